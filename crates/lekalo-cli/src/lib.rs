@@ -78,6 +78,11 @@ pub(crate) struct Cli {
     /// may hold (docs/robustness.md).
     #[arg(long, global = true, help_heading = "Global options", value_name = "N", default_value_t = context::DEFAULT_MAX_SIZE)]
     max_size: usize,
+    /// Largest input, in bytes, a command reads from one file or from standard input: a file
+    /// above it is refused by its size, a pipe or a device (which has no size) once more
+    /// arrives (docs/robustness.md).
+    #[arg(long, global = true, help_heading = "Global options", value_name = "BYTES", default_value_t = lekalo_io::DEFAULT_MAX_INPUT_BYTES)]
+    max_input_bytes: u64,
     /// Highest Bezier degree for the work whose cost grows as the degree squared or cubed:
     /// evaluating, plotting and inspecting Bezier curves, real degree, exact and approximate
     /// reduction (docs/robustness.md).
@@ -220,7 +225,7 @@ pub fn command() -> clap::Command {
 /// `128 +` the signal when interrupted.
 ///
 /// The global options (`--quiet`, `--verbose`, `--header`, `--force`, `--max-size`,
-/// `--max-degree`, `--group-column`) make the [`Context`] of this call, passed to the command;
+/// `--max-input-bytes`, `--max-degree`, `--group-column`) make the [`Context`] of this call, passed to the command;
 /// nothing stays from one call to the next, so that one process may run several commands in
 /// turn.
 pub fn run<I, T>(args: I) -> u8
@@ -249,6 +254,8 @@ where
     }
     // whatever this command reads, through any option, no output of it may replace
     lekalo_io::protect_files_read();
+    // and no input, endless or not, is read past this
+    lekalo_io::limit_input_bytes(cli.max_input_bytes);
     let cx = Context {
         verbosity: if cli.quiet {
             Verbosity::Quiet

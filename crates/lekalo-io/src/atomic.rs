@@ -2,8 +2,9 @@
 //! target, so a reader never sees a half-written file and a failed run leaves no debris. Inputs
 //! are never overwritten.
 
-use std::io::{Seek, Write};
+use std::io::{Read, Seek, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 
 use crate::error::{IoError, IoResult};
@@ -519,6 +520,39 @@ pub(crate) fn not_utf8(name: &str, bytes: &[u8], at: usize) -> IoError {
     }
 }
 
+/// Default of the input limit ([`limit_input_bytes`], the command line's `--max-input-bytes`):
+/// 1 GiB, above the largest file `--max-size`'s default of ten million entities, control points
+/// or samples makes in any of lekalo's text formats.
+pub const DEFAULT_MAX_INPUT_BYTES: u64 = 1 << 30;
+
+/// The most bytes one input may have ([`limit_input_bytes`]).
+static MAX_INPUT_BYTES: AtomicU64 = AtomicU64::new(DEFAULT_MAX_INPUT_BYTES);
+
+/// Sets the most bytes that [`read_input`] and [`read_input_bytes`] read of one input, for the
+/// rest of the process ([`DEFAULT_MAX_INPUT_BYTES`] until then). It is checked against a
+/// regular file's size before anything is reserved, and against what arrives from standard
+/// input, a pipe or a device (`/dev/zero`, a named pipe), which has no size to check first and
+/// is read through a cap of one byte more: an endless stream is refused once it passes the
+/// limit instead of filling the memory. The command line sets it from `--max-input-bytes` at
+/// the start of each command.
+pub fn limit_input_bytes(max: u64) {
+    MAX_INPUT_BYTES.store(max, Ordering::Relaxed);
+}
+
+/// [`IoError::TooLarge`] for the input `name` with more than `limit` bytes (`size` when known).
+fn input_too_large(name: &str, size: Option<u64>, limit: u64) -> IoError {
+    let (has, raise) = match size {
+        Some(n) => (format!("{n} bytes"), n.to_string()),
+        None => (format!("more than {limit} bytes"), "N".to_string()),
+    };
+    IoError::TooLarge {
+        what: format!(
+            "{name}: {has}, above the input limit of {limit} bytes; raise the limit with \
+             --max-input-bytes {raise} if the input is meant to be that large"
+        ),
+    }
+}
+
 /// Files of at least this many bytes are read by all cores at once, each a stretch of
 /// [`READ_PART`] bytes by positioned reads: the copy from the page cache and the first touch of
 /// the buffer's pages are then shared instead of done by one thread before any parsing starts.
@@ -531,10 +565,23 @@ const READ_PART: usize = 2 << 20;
 /// the parts of a text as it parses them, in parallel, starts from here) and with the
 /// byte-order mark kept.
 ///
+/// At most the input limit ([`limit_input_bytes`]) is read: a regular file above it is refused
+/// by its size, anything else (standard input, a pipe, a device) once more bytes arrive.
+///
+/// ```
+/// lekalo_io::limit_input_bytes(1000);
+/// let e = lekalo_io::read_input_bytes("/dev/zero".as_ref()).unwrap_err().to_string();
+/// lekalo_io::limit_input_bytes(lekalo_io::DEFAULT_MAX_INPUT_BYTES);
+/// # #[cfg(target_os = "linux")]
+/// assert!(e.contains("/dev/zero: more than 1000 bytes, above the input limit of 1000 bytes; raise the limit with --max-input-bytes"), "{e}");
+/// ```
+///
 /// # Errors
-/// [`IoError::Read`] if the file is missing or unreadable; [`IoError::TooLarge`] if memory for
-/// it cannot be reserved.
+/// [`IoError::Read`] if the file is missing or unreadable; [`IoError::TooLarge`] naming the
+/// input, its size and the limit if it is above the input limit, or if memory for it cannot be
+/// reserved.
 pub fn read_input_bytes(path: &Path) -> IoResult<(Vec<u8>, String)> {
+    let limit = MAX_INPUT_BYTES.load(Ordering::Relaxed);
     let (name, read): (String, Box<dyn std::io::Read>) = if path.as_os_str() == "-" {
         ("<stdin>".to_string(), Box::new(std::io::stdin()))
     } else {
@@ -553,7 +600,13 @@ pub fn read_input_bytes(path: &Path) -> IoResult<(Vec<u8>, String)> {
     let file_meta = (path.as_os_str() != "-")
         .then(|| std::fs::metadata(path).ok())
         .flatten();
+    // a regular file's size is known: refused before anything is reserved (the size of a
+    // device or a pipe says nothing, 0 for both /dev/zero and a named pipe)
+    let file_meta = file_meta.filter(std::fs::Metadata::is_file);
     if let Some(m) = &file_meta {
+        if m.len() > limit {
+            return Err(input_too_large(&name, Some(m.len()), limit));
+        }
         let len = usize::try_from(m.len()).unwrap_or(usize::MAX);
         bytes
             .try_reserve_exact(len)
@@ -564,18 +617,29 @@ pub fn read_input_bytes(path: &Path) -> IoResult<(Vec<u8>, String)> {
                 ),
             })?;
         #[cfg(unix)]
-        if m.is_file() && len >= PARALLEL_READ_MIN {
-            read_parallel(path, len, &mut bytes).map_err(read_err)?;
-            return Ok((bytes, name));
+        if len >= PARALLEL_READ_MIN {
+            read_parallel(path, len, limit, &mut bytes).map_err(read_err)?;
+            return within_limit(bytes, name, limit);
         }
     }
+    // one byte past the limit is read, so that more than the limit is seen and refused
+    let capped = read.take(limit.saturating_add(1));
     if file_meta.is_some() {
         // the whole length is reserved: the standard reader fills it in place (no copy through
         // a chunk buffer) and reports, rather than aborts on, a failure to grow further
-        let mut read = read;
-        read.read_to_end(&mut bytes).map_err(read_err)?;
+        let mut capped = capped;
+        capped.read_to_end(&mut bytes).map_err(read_err)?;
     } else {
-        read_to_end_fallible(read, &mut bytes).map_err(read_err)?;
+        read_to_end_fallible(capped, &mut bytes).map_err(read_err)?;
+    }
+    within_limit(bytes, name, limit)
+}
+
+/// `bytes` of the input `name`, read through a cap of `limit + 1` bytes, or the refusal of an
+/// input with more than `limit` bytes (one that grew past it while being read, or a stream).
+fn within_limit(bytes: Vec<u8>, name: String, limit: u64) -> IoResult<(Vec<u8>, String)> {
+    if bytes.len() as u64 > limit {
+        return Err(input_too_large(&name, None, limit));
     }
     Ok((bytes, name))
 }
@@ -585,7 +649,7 @@ pub fn read_input_bytes(path: &Path) -> IoResult<(Vec<u8>, String)> {
 /// bytes, both in parallel. A file that has grown since is read on to its end; one that has
 /// shrunk is read again from the start, sequentially.
 #[cfg(unix)]
-fn read_parallel(path: &Path, len: usize, bytes: &mut Vec<u8>) -> std::io::Result<()> {
+fn read_parallel(path: &Path, len: usize, limit: u64, bytes: &mut Vec<u8>) -> std::io::Result<()> {
     use rayon::prelude::*;
     use std::os::unix::fs::FileExt;
     let file = std::fs::File::open(path)?;
@@ -599,11 +663,15 @@ fn read_parallel(path: &Path, len: usize, bytes: &mut Vec<u8>) -> std::io::Resul
         Ok(()) => {
             let mut rest = &file;
             rest.seek(std::io::SeekFrom::Start(len as u64))?;
-            read_to_end_fallible(rest, bytes)
+            let left = limit.saturating_add(1).saturating_sub(len as u64);
+            read_to_end_fallible(rest.take(left), bytes)
         }
         Err(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => {
             bytes.clear();
-            read_to_end_fallible(std::fs::File::open(path)?, bytes)
+            read_to_end_fallible(
+                std::fs::File::open(path)?.take(limit.saturating_add(1)),
+                bytes,
+            )
         }
         Err(e) => Err(e),
     }

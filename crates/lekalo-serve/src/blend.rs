@@ -150,7 +150,11 @@ pub(crate) fn corners(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     let r: CornersRequest = parse(body)?;
     let pts = points(job, &r.points, "points")?;
     // the curve has degree 2k + 1: bounded before it is built
-    degree_of_k(job, r.continuity, 2 * r.continuity + 1)?;
+    degree_of_k(
+        job,
+        r.continuity,
+        r.continuity.saturating_mul(2).saturating_add(1),
+    )?;
     let (window, field) = match (r.fraction, r.length) {
         (Some(_), Some(_)) => {
             return Err(ApiError::bad(

@@ -1067,3 +1067,106 @@ fn control_characters_from_a_file_reach_standard_error_as_escapes() {
         "{err:?}"
     );
 }
+
+/// An endless device, an endless pipe on standard input, and a file larger than the input limit
+/// (`--max-input-bytes`), through the main input and through every option that reads a second
+/// file: each used to be read until the memory ran out (a device or a pipe has no size to check
+/// first). Each is refused with exit 2 naming the input, the limit and the option, quickly, and
+/// under an address-space limit far below what an unbounded read would take.
+#[cfg(target_os = "linux")]
+#[test]
+fn endless_and_oversized_inputs_are_refused_at_the_input_limit() {
+    let d = dir_with(&[
+        ("c.json", LECTURE),
+        ("s.json", SURFACE),
+        ("pts.csv", "0,0\n1,1\n2,0\n3,1\n4,0\n"),
+    ]);
+    let big: String = (0..300).map(|i| format!("{i},{}\n", i % 7)).collect();
+    fs::write(p(&d, "big.csv"), &big).unwrap();
+    let size = big.len();
+    let limit = "1000000";
+    let endless: [&[&str]; 8] = [
+        &["interpolate", "/dev/zero"],
+        &["interpolate", "pts.csv", "--tangents", "/dev/zero"],
+        &["eval", "s.json", "--uv-file", "/dev/zero"],
+        &["project", "c.json", "--points", "/dev/zero"],
+        &["fit", "pts.csv", "--weights", "/dev/zero", "--ctrl", "4"],
+        &["plot", "c.json", "--points", "/dev/zero", "-o", "p.svg"],
+        &["measure", "c.json", "--lengths", "/dev/zero"],
+        &["info", "/dev/zero"],
+    ];
+    for args in endless {
+        let mut all = vec!["--max-input-bytes", limit];
+        all.extend_from_slice(args);
+        let start = std::time::Instant::now();
+        // 512 MiB of address space: an unbounded read of /dev/zero passes it within a second
+        let (code, err) = run_limited(d.path(), 512 * 1024, &all);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(
+            err.contains(
+                "/dev/zero: more than 1000000 bytes, above the input limit of 1000000 bytes; \
+                 raise the limit with --max-input-bytes"
+            ),
+            "{args:?}: {err}"
+        );
+        assert!(
+            start.elapsed().as_secs() < 20,
+            "{args:?} took {:?}",
+            start.elapsed()
+        );
+    }
+    // an endless pipe on standard input (a child process that never stops writing)
+    let mut yes = std::process::Command::new("yes")
+        .arg("1,2")
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let out = std::process::Command::new(bin())
+        .current_dir(d.path())
+        .args(["--max-input-bytes", limit, "interpolate", "-"])
+        .stdin(yes.stdout.take().unwrap())
+        .output()
+        .unwrap();
+    let _ = yes.kill();
+    let _ = yes.wait();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("<stdin>: more than 1000000 bytes, above the input limit of 1000000 bytes"),
+        "{err}"
+    );
+    // a regular file is refused by its size, before it is read, with the value that admits it
+    let below = (size - 1).to_string();
+    let (code, err) = code_and_stderr(
+        d.path(),
+        &["--max-input-bytes", &below, "interpolate", "big.csv"],
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains(&format!(
+            "big.csv: {size} bytes, above the input limit of {below} bytes; raise the limit \
+             with --max-input-bytes {size}"
+        )),
+        "{err}"
+    );
+    // at the limit it is read
+    let at = size.to_string();
+    let out = lekalo()
+        .current_dir(d.path())
+        .args([
+            "--max-input-bytes",
+            &at,
+            "interpolate",
+            "big.csv",
+            "-o",
+            "b.json",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(debris(d.path(), &[]).iter().all(|n| !n.contains(".tmp")));
+}

@@ -7,6 +7,7 @@ mod api;
 mod assets;
 mod connections;
 mod fit_query;
+mod hostile;
 mod openapi;
 mod responsive;
 mod transport;

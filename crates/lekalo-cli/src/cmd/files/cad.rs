@@ -319,7 +319,8 @@ pub(crate) fn wants_shapes(
     if !is_json_lines(input, jsonl) || input.as_os_str() == "-" {
         return false;
     }
-    std::fs::read_to_string(input)
-        .map(|t| t.contains("_surface\"") || t.contains("piecewise_polynomial"))
+    // through the input limit: a named pipe or a device here must not be read without end
+    lekalo_io::read_input(input)
+        .map(|(t, _)| t.contains("_surface\"") || t.contains("piecewise_polynomial"))
         .unwrap_or(false)
 }

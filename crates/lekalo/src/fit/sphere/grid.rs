@@ -43,7 +43,9 @@ impl<'a> SphereGrid<'a> {
     /// strictly increasing"), `v` ("v[0] should be between [-pi, pi)", "v[-1] should be
     /// v[0] + 2pi or less", "v must be strictly increasing"); [`Error::LengthMismatch`] if `r`
     /// does not hold one value per grid node; [`Error::NonFinite`] for a value of `r` that is
-    /// NaN or infinite; [`Error::TooFew`] for an empty grid or fewer than four longitudes.
+    /// NaN or infinite, and [`Error::InvalidArgument`] naming `r` for values so large that the
+    /// fit's residual sum of squares overflows; [`Error::TooFew`] for an empty grid or fewer
+    /// than four longitudes.
     pub fn new(u: &'a [f64], v: &'a [f64], r: &'a [f64]) -> Result<Self> {
         let (Some(&u0), Some(&u1), Some(&v0), Some(&v1)) =
             (u.first(), u.last(), v.first(), v.last())
@@ -115,6 +117,7 @@ impl<'a> SphereGrid<'a> {
                 value: r[i],
             });
         }
+        super::scattered::check_scale(r, None)?;
         Ok(SphereGrid { u, v, r })
     }
 }

@@ -43,8 +43,9 @@ impl<'a> SphereData<'a> {
     /// [`Error::InvalidArgument`] naming `w` ("w should be positive": a weight negative or not
     /// finite), `theta` ("theta should be between [0, pi]"), `phi` ("phi should be between
     /// [0, 2pi]"), every weight 0; [`Error::LengthMismatch`] for lengths that differ;
-    /// [`Error::NonFinite`] for a value of `r` that is NaN or infinite; [`Error::TooFew`] for
-    /// fewer than two points (FITPACK's `m >= 2`).
+    /// [`Error::NonFinite`] for a value of `r` that is NaN or infinite; [`Error::InvalidArgument`]
+    /// naming `r` for values so large that the fit's residual sum of squares overflows
+    /// ([`check_scale`]); [`Error::TooFew`] for fewer than two points (FITPACK's `m >= 2`).
     pub fn new(
         theta: &'a [f64],
         phi: &'a [f64],
@@ -97,6 +98,7 @@ impl<'a> SphereData<'a> {
                 value: r[i],
             });
         }
+        check_scale(r, w)?;
         // FITPACK's `m >= 2`: no data, or one point, made a spline with fp = 0 and no error
         if theta.len() < 2 {
             return Err(Error::TooFew {
@@ -118,6 +120,46 @@ impl<'a> SphereData<'a> {
     fn weight(&self, k: usize) -> f64 {
         self.w.map_or(1.0, |w| w[k])
     }
+}
+
+/// How far the residuals of a fit may exceed the largest weighted value `|w·r|` of its data
+/// before their sum of squares must still be finite: a spline through values of one size
+/// overshoots them by a small factor (its Bernstein-form bound), not by four.
+pub(super) const RESIDUAL_HEADROOM: f64 = 4.0;
+
+/// The values `r` (weighted by `w`) checked against the fit's arithmetic: its rounds compare
+/// residual sums of squares, up to `m·(RESIDUAL_HEADROOM·max|w·r|)²` for `m` values, and a sum
+/// that overflows makes every residual infinite and the spline NaN. Values near the largest
+/// double (`r * 1e300`) are refused naming `r` and the fix, a rescaling, instead of failing
+/// later on the spline's coefficients.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] naming `r` and its largest value.
+pub(super) fn check_scale(r: &[f64], w: Option<&[f64]>) -> Result<()> {
+    let (i, big) = r
+        .iter()
+        .enumerate()
+        .map(|(k, v)| (k, (v * w.map_or(1.0, |w| w[k])).abs()))
+        .fold((0, 0.0_f64), |a, b| if b.1 > a.1 { b } else { a });
+    let bound = (f64::MAX / r.len().max(1) as f64).sqrt() / RESIDUAL_HEADROOM;
+    if big > bound {
+        return Err(invalid(
+            "r",
+            format!(
+                "r[{i}] = {:e}{} is too large for the fit, whose residual sum of squares \
+                 overflows above |w·r| = {bound:.3e} for {} values; divide r by a power of ten \
+                 (and s by its square), fit, and multiply the spline by it",
+                r[i],
+                if w.is_some() {
+                    " (times its weight)"
+                } else {
+                    ""
+                },
+                r.len()
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// `eps` in `(0, 1)`, SciPy's words.

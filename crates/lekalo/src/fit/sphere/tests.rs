@@ -2,6 +2,7 @@
 //! across a pole of the form `a cos φ + b sin φ`, constants reproduced exactly, grid data
 //! interpolated at `s = 0`, the smoothing condition met, and SciPy's messages for bad input.
 
+use super::scattered::RESIDUAL_HEADROOM;
 use super::space::{PI, TWO_PI};
 use super::*;
 use crate::fit::SMOOTHING_RTOL;
@@ -433,4 +434,44 @@ fn empty_data_or_all_zero_weights_are_refused() {
     let mut w = w;
     w[7] = 1.0;
     assert!(SphereData::new(&theta, &phi, &r, Some(&w)).is_ok());
+}
+
+/// Values near the largest double (`r * 1e300`) made the residual sums of squares infinite and
+/// the spline NaN, refused later as "coordinates" that the caller never gave: they are refused
+/// naming `r`, its index and the rescaling; just inside the bound, a constant is still
+/// reproduced exactly (the bound leaves the fit's arithmetic finite).
+#[test]
+fn values_whose_squares_overflow_are_refused_naming_r() {
+    let (theta, phi) = spiral(60);
+    let m = theta.len();
+    let bound = (f64::MAX / m as f64).sqrt() / RESIDUAL_HEADROOM;
+    let mut r: Vec<f64> = theta.iter().zip(&phi).map(|(t, p)| field(*t, *p)).collect();
+    r.iter_mut().for_each(|v| *v *= 1e300);
+    let e = SphereData::new(&theta, &phi, &r, None).unwrap_err();
+    assert_eq!(e.arg(), None, "{e:?}");
+    let msg = e.to_string();
+    assert!(msg.starts_with("invalid r: r["), "{msg}");
+    assert!(msg.contains("divide r by a power of ten"), "{msg}");
+    // the weight counts: modest values with a huge weight are the same overflow
+    let ones = vec![1.0; m];
+    let w = vec![1e300; m];
+    let e = SphereData::new(&theta, &phi, &ones, Some(&w)).unwrap_err();
+    assert!(e.to_string().contains("(times its weight)"), "{e}");
+    // just inside the bound: a constant is reproduced
+    let c = bound * 0.99;
+    let flat = vec![c; m];
+    let data = SphereData::new(&theta, &phi, &flat, None).unwrap();
+    let fit = sphere_least_squares(&data, &[1.0, 2.0], &[1.0, 3.0], 1e-16).unwrap();
+    for (t, p) in [(0.3, 1.0), (1.5, 4.0), (PI, 0.0)] {
+        assert!(
+            (value(&fit, t, p) / c - 1.0).abs() < 1e-12,
+            "{} at ({t}, {p})",
+            value(&fit, t, p)
+        );
+    }
+    // a grid alike
+    let (u, v, mut rg) = grid_data(6, 8, 0.0);
+    rg.iter_mut().for_each(|x| *x *= 1e300);
+    let e = SphereGrid::new(&u, &v, &rg).unwrap_err();
+    assert!(e.to_string().starts_with("invalid r: r["), "{e}");
 }
