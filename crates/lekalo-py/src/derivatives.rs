@@ -10,9 +10,11 @@
 //!
 //! This file holds the derivatives of evaluation (curves, NURBS, surfaces, tensor products);
 //! `derivatives/fits.rs` those of the fits (interpolation, least squares, smoothing) with
-//! respect to their data.
+//! respect to their data, and `derivatives/knots.rs` those of curve and surface evaluation with
+//! respect to the knots.
 
 mod fits;
+mod knots;
 
 use lekalo::derivatives::CurveLinearization;
 use lekalo::{BSplineCurve, NurbsCurve};
@@ -28,6 +30,7 @@ use crate::surfaces::bspline_surface_arg;
 /// Registers the functions of this module.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     fits::register(m)?;
+    knots::register(m)?;
     m.add_function(wrap_pyfunction!(bspline_curve_jvp, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_curve_vjp, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_curve_linearize, m)?)?;

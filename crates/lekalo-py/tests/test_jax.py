@@ -1,7 +1,8 @@
 """lekalo.jax: values bit-for-bit lekalo's, Jacobians from jacfwd and jacrev against central
 finite differences (relative 1e-7) eagerly, under jit and under vmap, and the errors for what
-is not supported (float32, knot derivatives, second derivatives, parameters outside the
-domain). The derivative mathematics is tested in the core (crates/lekalo/src/derivatives/)."""
+is not supported (float32, knot derivatives of the NURBS evaluation, second derivatives,
+parameters outside the domain); the knot derivatives are in test_jax_knots.py. The derivative
+mathematics is tested in the core (crates/lekalo/src/derivatives/)."""
 
 import numpy as np
 import pytest
@@ -301,14 +302,13 @@ def test_interpolation_runs_as_ffi_targets_and_bad_data_gives_lekalos_message():
 def test_unsupported_transformations_say_so():
     knots, ctrl, u = curve_case()
     with pytest.raises(NotImplementedError, match="knots"):
-        jax.grad(lambda k: jnp.sum(bspline_eval(k, ctrl, u, 3)))(knots)
+        jax.grad(lambda k: jnp.sum(nurbs_eval(k, ctrl, np.ones(len(ctrl)), u, 3)))(knots)
     with pytest.raises(NotImplementedError, match="first derivatives"):
         jax.hessian(lambda t: jnp.sum(bspline_eval(knots, ctrl, t, 3)))(u)
     with pytest.raises(NotImplementedError, match="first derivatives"):
         jax.hessian(lambda c: jnp.sum(bspline_eval(knots, c, u, 3) ** 2))(ctrl)
-    ku, kv, net, su, sv = surface_case()
-    with pytest.raises(NotImplementedError, match="knots"):
-        jax.jacfwd(lambda k: bspline_surface_eval(k, kv, net, su, sv, 2, 3))(ku)
+    with pytest.raises(NotImplementedError, match="first derivatives"):
+        jax.hessian(lambda k: jnp.sum(bspline_eval(k, ctrl, u, 3)))(knots)
     # knots behind stop_gradient are constants
     g = jax.grad(lambda c, k: jnp.sum(bspline_eval(jax.lax.stop_gradient(k), c, u, 3)))(ctrl, knots)
     assert g.shape == ctrl.shape
@@ -350,6 +350,9 @@ def test_the_docs_examples_run():
     assert namespace["g_ys"].shape == (8,) and namespace["g_xs"].shape == (8,)
     assert namespace["coef"].shape == (2, 8) and namespace["g_len"].shape == (5, 2)
     assert namespace["t_star"].shape == (2,) and namespace["dt_dq"].shape == (2, 2, 2)
+    g_knots = np.asarray(namespace["g_knots"])
+    assert g_knots.shape == (10,) and np.all(g_knots[:4] == 0) and np.all(g_knots[6:] == 0)
+    assert np.all(g_knots[4:6] != 0)
 
 
 def test_the_module_docstring_examples_run():

@@ -19,8 +19,10 @@ moved to the front and unbatched operands broadcast, the layout every handler ac
 kernel call a batch element). Which linear inputs are present is a static parameter: a
 symbolic-zero tangent is not passed, and a cotangent that is not wanted is not computed.
 
-Every kernel has the same operands: its knot vectors (constants), then its differentiable
-arrays, one a kind (control points, weights, parameters...). ``Kernel`` is the ``custom_jvp``
+Every kernel has the same operands: its knot vectors, then its differentiable arrays, one a
+kind (control points, weights, parameters...). A kernel whose knots are differentiable (B-spline
+curves and surfaces) passes them among the arrays, as kinds of their own (``knots``,
+``knots_u``, ``knots_v``), and none as constants. ``Kernel`` is the ``custom_jvp``
 function of such a kernel: values by its ``_eval`` target, tangents by ``LinearPair``.
 """
 
@@ -202,7 +204,8 @@ def _batcher(prim):
 
 class Kernel:
     """A lekalo kernel as a differentiable JAX function of ``(static, knots, arrays)``:
-    ``knots`` a tuple of knot vectors (constants: a tangent raises ``NotImplementedError``),
+    ``knots`` a tuple of constant knot vectors (a tangent raises ``NotImplementedError``; knots
+    that are differentiable are passed among ``arrays`` instead),
     ``arrays`` a tuple of the differentiable arrays, one for each of ``kinds`` (the targets'
     ``with_<kind>`` flags), ``static`` the targets' integer attributes as ``(name, value)``
     pairs. The values are the target ``{prefix}_eval``, of shape ``out_shape(residuals)``

@@ -425,6 +425,12 @@ def bspline_curve_vjp(
 def bspline_curve_linearize(
     degree: int, knots: ArrayLike, control: ArrayLike, t: ArrayLike
 ) -> dict: ...
+def bspline_curve_knot_jvp(
+    degree: int, knots: ArrayLike, control: ArrayLike, t: ArrayLike, knots_tangent: ArrayLike
+) -> Tuple[Array, Array]: ...
+def bspline_curve_knot_vjp(
+    degree: int, knots: ArrayLike, control: ArrayLike, t: ArrayLike, cotangent: ArrayLike
+) -> Array: ...
 def xla_ffi_handlers() -> Dict[str, int]: ...
 def nurbs_curve_jvp(
     degree: int,
@@ -543,6 +549,27 @@ def bspline_surface_vjp(
     v: ArrayLike,
     cotangent: ArrayLike,
 ) -> Tuple[Array, Array, Array]: ...
+def bspline_surface_knot_jvp(
+    degree_u: int,
+    degree_v: int,
+    knots_u: ArrayLike,
+    knots_v: ArrayLike,
+    control: ArrayLike,
+    u: ArrayLike,
+    v: ArrayLike,
+    knots_u_tangent: Optional[ArrayLike] = None,
+    knots_v_tangent: Optional[ArrayLike] = None,
+) -> Tuple[Array, Array]: ...
+def bspline_surface_knot_vjp(
+    degree_u: int,
+    degree_v: int,
+    knots_u: ArrayLike,
+    knots_v: ArrayLike,
+    control: ArrayLike,
+    u: ArrayLike,
+    v: ArrayLike,
+    cotangent: ArrayLike,
+) -> Tuple[Array, Array]: ...
 def bspline_surface_linearize(
     degree_u: int,
     degree_v: int,

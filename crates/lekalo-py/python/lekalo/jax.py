@@ -22,7 +22,10 @@
   ``x``.
 
 The evaluations are differentiable, in forward and reverse mode, with respect to the control
-points and the parameters; the knots and degrees are constants.
+points and the parameters; ``bspline_eval`` and ``bspline_surface_eval`` also with respect to
+their knots (the interior ones: the ``degree + 1`` first and last knots of a direction bound
+the domain and are held fixed, their gradient zero; ``docs/theory/derivatives.md``, "Knots").
+The degrees are constants, and so are the knots of the other functions.
 
 The four evaluations run inside the compiled program: their values, JVPs and VJPs are XLA
 custom calls (FFI targets written against XLA's C ABI in the native module,
@@ -51,7 +54,8 @@ Requirements and limits, each with a clear error:
 - float64 only: enable it with ``jax.config.update("jax_enable_x64", True)`` first;
 - first derivatives: a second derivative (``jax.hessian``, ``jacfwd(jacrev(...))``) raises
   ``NotImplementedError``;
-- no derivatives with respect to the knots (``NotImplementedError``): pass them as constants;
+- derivatives with respect to the knots of ``nurbs_eval`` and ``tensor_bspline_eval`` raise
+  ``NotImplementedError``: pass them as constants;
 - parameters must lie in the domain (and NURBS weights be positive): otherwise the error
   raised inside lekalo's FFI target reaches the caller carrying lekalo's
   message, which names the parameter and the domain (eagerly and under ``jit``), as
@@ -116,7 +120,7 @@ def _curve_out_shape(res):
 
 
 _CURVE = _jax_ffi.Kernel(
-    "bspline_eval", "lekalo_bspline", ("control", "parameter"), _curve_out_shape
+    "bspline_eval", "lekalo_bspline", ("knots", "control", "parameter"), _curve_out_shape
 )
 
 
@@ -127,9 +131,13 @@ def bspline_eval(knots, control_points, u, degree):
     control points), lekalo's evaluation as an XLA custom call (no host callback).
 
     Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
-    respect to ``control_points`` and ``u``; ``knots`` and ``degree`` are constants (``degree``
-    a Python int). At an interior knot where ``C'`` jumps, the derivative in ``u`` is the
-    right-hand one.
+    respect to ``control_points``, ``u`` and ``knots``; ``degree`` is a constant (a Python int).
+    At an interior knot where ``C'`` jumps, the derivative in ``u`` is the right-hand one. The
+    knots' derivative (``lekalo.bspline_curve_knot_jvp`` / ``_vjp``) covers the interior knots
+    ``knots[degree + 1 : n]``; the first and last ``degree + 1`` are held fixed (zero
+    gradient). At a knot of multiplicity ``μ > 1`` it is one-sided: the first copy's is the
+    derivative of decreasing it, the last copy's of increasing it, and the copies' gradients
+    sum to that of moving them together.
     """
     name = "bspline_eval"
     _require_x64(name)
@@ -151,7 +159,7 @@ def bspline_eval(knots, control_points, u, degree):
         )
     scalar_dim = ctrl.ndim == 1
     c2 = ctrl[:, None] if scalar_dim else ctrl
-    out = _CURVE((("degree", degree),), (knots,), (c2, u.reshape(-1)))
+    out = _CURVE((("degree", degree),), (), (knots, c2, u.reshape(-1)))
     out = out.reshape(u.shape + c2.shape[-1:])
     return out[..., 0] if scalar_dim else out
 
@@ -213,7 +221,10 @@ def _surface_out_shape(res):
 
 
 _SURFACE = _jax_ffi.Kernel(
-    "bspline_surface_eval", "lekalo_surface", ("control", "parameter"), _surface_out_shape
+    "bspline_surface_eval",
+    "lekalo_surface",
+    ("knots_u", "knots_v", "control", "parameter"),
+    _surface_out_shape,
 )
 
 
@@ -224,7 +235,8 @@ def bspline_surface_eval(knots_u, knots_v, control_points, u, v, degree_u, degre
     evaluation, as an XLA custom call (no host callback).
 
     Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
-    respect to ``control_points``, ``u`` and ``v``; knots and degrees are constants.
+    respect to ``control_points``, ``u``, ``v``, ``knots_u`` and ``knots_v`` (the interior
+    knots of each direction, as ``bspline_eval``'s); the degrees are constants.
     """
     name = "bspline_surface_eval"
     _require_x64(name)
@@ -251,7 +263,7 @@ def bspline_surface_eval(knots_u, knots_v, control_points, u, v, degree_u, degre
         )
     static = (("degree_u", degrees[0]), ("degree_v", degrees[1]))
     uv = jnp.stack([u.reshape(-1), v.reshape(-1)], axis=-1)
-    out = _SURFACE(static, (ku, kv), (ctrl, uv))
+    out = _SURFACE(static, (), (ku, kv, ctrl, uv))
     return out.reshape(u.shape + ctrl.shape[-1:])
 
 

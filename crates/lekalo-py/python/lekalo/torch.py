@@ -24,8 +24,11 @@ Limits, each with a clear error:
 - float64 tensors only (``torch.float64``; ``lekalo.InputError`` otherwise);
 - first derivatives in reverse mode: no ``torch.func.jvp`` / forward-mode AD, no double
   backward (``create_graph=True`` derivatives of the backward are not tracked);
-- the knots, degrees, fit parameters and weights are constants (plain arrays or tensors whose
-  gradient is not asked for);
+- the knots of ``bspline_eval`` and ``bspline_surface_eval`` may ask for their gradient (the
+  interior knots': ``lekalo.bspline_curve_knot_vjp``, ``lekalo.bspline_surface_knot_vjp``; the
+  ``degree + 1`` first and last are held fixed, their gradient zero); the other knots, the
+  degrees, fit parameters and weights are constants (plain arrays or tensors whose gradient is
+  not asked for);
 - runs on the CPU: tensors on another device are copied to the host and back.
 """
 
@@ -83,6 +86,18 @@ def _constant(x, what, name):
     return np.asarray(x, dtype=np.float64)
 
 
+def _knots(x, what, name):
+    """Knots that may ask for their gradient: a float64 tensor (shared by the batch)."""
+    if isinstance(x, torch.Tensor) and x.requires_grad:
+        return _tensor(x, what, name)
+    return torch.from_numpy(_constant(x, what, name))
+
+
+def _batch_sum(a, batch):
+    """A cotangent of an argument the batch shares: summed over the batch axes."""
+    return a.sum(axis=tuple(range(len(batch)))) if batch else a
+
+
 def _looped(fn, batch, *arrays):
     """``fn`` over the batch shape ``batch``: ``arrays`` are ``(array, batched)`` pairs, a
     batched array indexed by the batch index and a shared one passed whole; one call a batch
@@ -124,40 +139,48 @@ def _batch_of(ctrl_nd, core, *others):
 
 class _BSplineCurve(torch.autograd.Function):
     @staticmethod
-    def forward(ctx, ctrl, u, knots, degree):
-        c, t = _np(ctrl), _np(u)
+    def forward(ctx, ctrl, u, knots_t, degree):
+        c, t, knots = _np(ctrl), _np(u), _np(knots_t)
         batch, (ub,) = _batch_of(c, 2, (t, 1))
-        ctx.save_for_backward(ctrl, u)
+        ctx.save_for_backward(ctrl, u, knots_t)
         ctx.args = (knots, degree, batch, ub)
         vals = _looped(lambda cc, tt: _lekalo.bspline_curve_jvp(degree, knots, cc, tt)[0], batch, (c, True), (t, ub))
         return _out(vals, ctrl)
 
     @staticmethod
     def backward(ctx, g):
-        ctrl, u = ctx.saved_tensors
+        ctrl, u, knots_t = ctx.saved_tensors
         knots, degree, batch, ub = ctx.args
+        arrays = ((_np(ctrl), True), (_np(u), ub), (_np(g), True))
         gc, gu = _looped(
             lambda cc, tt, gg: _lekalo.bspline_curve_vjp(degree, knots, cc, tt, gg),
             batch,
-            (_np(ctrl), True),
-            (_np(u), ub),
-            (_np(g), True),
+            *arrays,
         )
         if not ub and batch:
             gu = gu.sum(axis=tuple(range(len(batch))))
-        return _out(gc, ctrl), _out(gu, u), None, None
+        gk = None
+        if ctx.needs_input_grad[2]:
+            gk = _looped(
+                lambda cc, tt, gg: _lekalo.bspline_curve_knot_vjp(degree, knots, cc, tt, gg),
+                batch,
+                *arrays,
+            )
+            gk = _out(_batch_sum(gk, batch), knots_t)
+        return _out(gc, ctrl), _out(gu, u), gk, None
 
 
 def bspline_eval(knots, control_points, u, degree):
     """``C(u)`` of the B-spline curve of ``degree`` on ``knots`` with ``control_points``
     (``(..., n, dim)``: leading axes are a batch of curves) at the parameters ``u`` (``(m,)``,
     shared, or ``(..., m)`` with the same batch axes). Returns ``(..., m, dim)``, bit-for-bit
-    lekalo's evaluation; differentiable with respect to ``control_points`` and ``u``.
+    lekalo's evaluation; differentiable with respect to ``control_points``, ``u`` and ``knots``
+    (the interior knots; the ``degree + 1`` first and last are held fixed).
     """
     name = "bspline_eval"
     ctrl = _tensor(control_points, "control_points", name)
     u = _tensor(u, "u", name)
-    knots = _constant(knots, "the knots", name)
+    knots = _knots(knots, "the knots", name)
     if ctrl.ndim < 2:
         raise InputError(f"lekalo.torch.{name}: control_points must be (..., n, dim), got {tuple(ctrl.shape)}")
     return _BSplineCurve.apply(ctrl, u, knots, int(degree))
@@ -216,10 +239,10 @@ def nurbs_eval(knots, control_points, weights, u, degree):
 
 class _BSplineSurface(torch.autograd.Function):
     @staticmethod
-    def forward(ctx, net, u, v, ku, kv, degrees):
-        c, a, b = _np(net), _np(u), _np(v)
+    def forward(ctx, net, u, v, ku_t, kv_t, degrees):
+        c, a, b, ku, kv = _np(net), _np(u), _np(v), _np(ku_t), _np(kv_t)
         batch, (ab, bb) = _batch_of(c, 3, (a, 1), (b, 1))
-        ctx.save_for_backward(net, u, v)
+        ctx.save_for_backward(net, u, v, ku_t, kv_t)
         ctx.args = (ku, kv, degrees, batch, ab, bb)
         vals = _looped(
             lambda cc, x, y: _lekalo.bspline_surface_jvp(*degrees, ku, kv, cc, x, y)[0],
@@ -232,34 +255,41 @@ class _BSplineSurface(torch.autograd.Function):
 
     @staticmethod
     def backward(ctx, g):
-        net, u, v = ctx.saved_tensors
+        net, u, v, ku_t, kv_t = ctx.saved_tensors
         ku, kv, degrees, batch, ab, bb = ctx.args
+        arrays = ((_np(net), True), (_np(u), ab), (_np(v), bb), (_np(g), True))
         gc, gu, gv = _looped(
             lambda cc, x, y, gg: _lekalo.bspline_surface_vjp(*degrees, ku, kv, cc, x, y, gg),
             batch,
-            (_np(net), True),
-            (_np(u), ab),
-            (_np(v), bb),
-            (_np(g), True),
+            *arrays,
         )
+        gku = gkv = None
+        if ctx.needs_input_grad[3] or ctx.needs_input_grad[4]:
+            gku, gkv = _looped(
+                lambda cc, x, y, gg: _lekalo.bspline_surface_knot_vjp(*degrees, ku, kv, cc, x, y, gg),
+                batch,
+                *arrays,
+            )
+            gku = _out(_batch_sum(gku, batch), ku_t) if ctx.needs_input_grad[3] else None
+            gkv = _out(_batch_sum(gkv, batch), kv_t) if ctx.needs_input_grad[4] else None
         axes = tuple(range(len(batch)))
         if not ab and batch:
             gu = gu.sum(axis=axes)
         if not bb and batch:
             gv = gv.sum(axis=axes)
-        return _out(gc, net), _out(gu, u), _out(gv, v), None, None, None
+        return _out(gc, net), _out(gu, u), _out(gv, v), gku, gkv, None
 
 
 def bspline_surface_eval(knots_u, knots_v, control_points, u, v, degree_u, degree_v):
     """``S(u, v)`` of the tensor-product B-spline surface with the net ``control_points``
     (``(..., nu, nv, dim)``) at pairs ``u``, ``v`` (``(m,)`` each, or with the batch axes);
-    differentiable with respect to the net, ``u`` and ``v``."""
+    differentiable with respect to the net, ``u``, ``v`` and the interior knots."""
     name = "bspline_surface_eval"
     net = _tensor(control_points, "control_points", name)
     u = _tensor(u, "u", name)
     v = _tensor(v, "v", name)
-    ku = _constant(knots_u, "the knots", name)
-    kv = _constant(knots_v, "the knots", name)
+    ku = _knots(knots_u, "the knots", name)
+    kv = _knots(knots_v, "the knots", name)
     return _BSplineSurface.apply(net, u, v, ku, kv, (int(degree_u), int(degree_v)))
 
 

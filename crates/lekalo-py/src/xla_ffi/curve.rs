@@ -1,19 +1,21 @@
 //! B-spline curve evaluation `C(t_i) = Σ_j N_{j,p}(t_i) P_j` as XLA FFI handlers, with its JVP
-//! and VJP with respect to the control points `P` and the parameters `t`
-//! (`docs/theory/derivatives.md`, "Curves"):
+//! and VJP with respect to the knots `τ`, the control points `P` and the parameters `t`
+//! (`docs/theory/derivatives.md`, "Curves" and "Knots"):
 //!
 //! | target | arguments | attributes | results |
 //! |---|---|---|---|
 //! | `lekalo_bspline_eval` | knots `(nk,)`, control `(n, dim)`, t `(m,)` | `degree` | `C(t)` `(m, dim)` |
-//! | `lekalo_bspline_jvp` | knots, control, t, [`Ṗ` `(n, dim)`], [`ṫ` `(m,)`] | `degree`, `with_control`, `with_parameter` | `Ċ` `(m, dim)` |
-//! | `lekalo_bspline_vjp` | knots, control, t, `ḡ` `(m, dim)` | `degree`, `with_control`, `with_parameter` | [`P̄` `(n, dim)`], [`t̄` `(m,)`] |
+//! | `lekalo_bspline_jvp` | knots, control, t, [`τ̇` `(nk,)`], [`Ṗ` `(n, dim)`], [`ṫ` `(m,)`] | `degree`, `with_knots`, `with_control`, `with_parameter` | `Ċ` `(m, dim)` |
+//! | `lekalo_bspline_vjp` | knots, control, t, `ḡ` `(m, dim)` | `degree`, `with_knots`, `with_control`, `with_parameter` | [`τ̄` `(nk,)`], [`P̄` `(n, dim)`], [`t̄` `(m,)`] |
 //!
 //! The bracketed buffers are present when the attribute of the same name is true. Each buffer
 //! may have leading batch axes (the same for all). The values are
 //! [`BSplineCurve::eval_batch`]'s (P&T A2.2), or for large batches ([`FAST_PER_PIECE`]) those of
 //! the fast [`lekalo::CurveEvaluator`]; the JVP
-//! [`BSplineCurve::eval_batch_jvp`]'s, the VJP [`BSplineCurve::eval_batch_vjp`]'s. For a batch
-//! element with few parameters against its pieces ([`in_place`]) the three are
+//! [`BSplineCurve::eval_batch_jvp`]'s plus [`BSplineCurve::eval_batch_knot_jvp`]'s, the VJP
+//! [`BSplineCurve::eval_batch_vjp`]'s and [`BSplineCurve::eval_batch_knot_vjp`]'s. For a batch
+//! element with few parameters against its pieces ([`in_place`]), and no knot derivative, the
+//! three are
 //! [`BorrowedCurve`]'s on the operand buffers themselves (the same numbers): no copy, and only
 //! the knots and control points the parameters' spans read are checked.
 
@@ -41,6 +43,9 @@ ffi_targets! {
     jvp: jvp_body,
     vjp: vjp_body,
 }
+
+/// The attributes naming the tangents (JVP) and cotangents (VJP) present, in operand order.
+const KINDS: [&str; 3] = ["with_knots", "with_control", "with_parameter"];
 
 /// Whether `m` parameters on `n` control points of `degree` are evaluated in place
 /// ([`BorrowedCurve`]) rather than on a built curve: when they read fewer knots and control
@@ -124,21 +129,26 @@ fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
 
 fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
     let degree = count_attr(call, "degree")?;
-    let present = flags(call, ["with_control", "with_parameter"]);
+    let present = flags(call, KINDS);
     let Call { args, rets, .. } = call;
-    let (res, [dc, dt]) = tangents(args, 3, present)?;
+    let (res, [dk, dc, dt]) = tangents(args, 3, present)?;
     let (batch, [sk, sc, st], dim) = layout(res)?;
     let tangent = single(rets)?;
     let sv = batch.size("tangent", tangent.dims, 2)?;
+    if let Some(a) = dk {
+        batch.expect("knot tangent", a.dims, 1, sk)?;
+    }
     if let Some(a) = dc {
         batch.expect("control-point tangent", a.dims, 2, sc)?;
     }
     if let Some(a) = dt {
         batch.expect("parameter tangent", a.dims, 1, st)?;
     }
-    let small = in_place(st, sc / dim.max(1), degree);
+    // the knot derivative needs the built curve
+    let small = dk.is_none() && in_place(st, sc / dim.max(1), degree);
     // the values the JVP kernel also computes, not returned (XLA has them from the evaluation)
     let mut values = vec![0.0; if small { 0 } else { sv }];
+    let mut knot_part = vec![0.0; if dk.is_some() { sv } else { 0 }];
     for b in 0..batch.count {
         if small {
             let c = borrowed(degree, (&res[0], sk), (&res[1], sc), dim, b)?;
@@ -152,40 +162,56 @@ fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
             continue;
         }
         let c = curve(degree, (&res[0], sk), (&res[1], sc), dim, b)?;
-        c.eval_batch_jvp(
+        let (ts, out) = (
             element(res[2].data, st, b),
+            element_mut(tangent.data, sv, b),
+        );
+        c.eval_batch_jvp(
+            ts,
             dc.map(|a| element(a.data, sc, b)),
             dt.map(|a| element(a.data, st, b)),
             &mut values,
-            element_mut(tangent.data, sv, b),
+            out,
         )
         .map_err(|e| e.to_string())?;
+        if let Some(a) = dk {
+            c.eval_batch_knot_jvp(ts, element(a.data, sk, b), &mut values, &mut knot_part)
+                .map_err(|e| e.to_string())?;
+            for (o, k) in out.iter_mut().zip(&knot_part) {
+                *o += k;
+            }
+        }
     }
     Ok(())
 }
 
 fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
     let degree = count_attr(call, "degree")?;
-    let present = flags(call, ["with_control", "with_parameter"]);
+    let present = flags(call, KINDS);
     let Call { args, rets, .. } = call;
     let (res, [g]) = tangents(args, 3, [true])?;
     let g = g.ok_or("no cotangent")?;
     let (batch, [sk, sc, st], dim) = layout(res)?;
     let sg = batch.size("cotangent", g.dims, 2)?;
-    let [mut gc, mut gt] = cotangents(rets, present)?;
+    let [mut gk, mut gc, mut gt] = cotangents(rets, present)?;
+    if let Some(a) = &gk {
+        batch.expect("knot cotangent", a.dims, 1, sk)?;
+    }
     if let Some(a) = &gc {
         batch.expect("control-point cotangent", a.dims, 2, sc)?;
     }
     if let Some(a) = &gt {
         batch.expect("parameter cotangent", a.dims, 1, st)?;
     }
-    let small = in_place(st, sc / dim.max(1), degree);
+    // the knot derivative needs the built curve
+    let small = gk.is_none() && in_place(st, sc / dim.max(1), degree);
     for b in 0..batch.count {
+        let (ts, gb) = (element(res[2].data, st, b), element(g.data, sg, b));
         if small {
             let c = borrowed(degree, (&res[0], sk), (&res[1], sc), dim, b)?;
             c.eval_batch_vjp(
-                element(res[2].data, st, b),
-                element(g.data, sg, b),
+                ts,
+                gb,
                 gc.as_mut().map(|a| element_mut(a.data, sc, b)),
                 gt.as_mut().map(|a| element_mut(a.data, st, b)),
             )
@@ -193,13 +219,19 @@ fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
             continue;
         }
         let c = curve(degree, (&res[0], sk), (&res[1], sc), dim, b)?;
-        c.eval_batch_vjp(
-            element(res[2].data, st, b),
-            element(g.data, sg, b),
-            gc.as_mut().map(|a| element_mut(a.data, sc, b)),
-            gt.as_mut().map(|a| element_mut(a.data, st, b)),
-        )
-        .map_err(|e| e.to_string())?;
+        if let Some(a) = gk.as_mut() {
+            c.eval_batch_knot_vjp(ts, gb, element_mut(a.data, sk, b))
+                .map_err(|e| e.to_string())?;
+        }
+        if gc.is_some() || gt.is_some() {
+            c.eval_batch_vjp(
+                ts,
+                gb,
+                gc.as_mut().map(|a| element_mut(a.data, sc, b)),
+                gt.as_mut().map(|a| element_mut(a.data, st, b)),
+            )
+            .map_err(|e| e.to_string())?;
+        }
     }
     Ok(())
 }

@@ -5,8 +5,8 @@
 //!   into slices, the metadata query, errors and caught panics;
 //! - `operands`: what every handler does with its buffers, once: the batch axes, a batch
 //!   element's slice, the `with_<kind>` flags and the split of a derivative target's operands;
-//! - `curve`: B-spline curve evaluation and its JVP and VJP with respect to the control points
-//!   and the parameters (`lekalo::derivatives`, `docs/theory/derivatives.md`);
+//! - `curve`: B-spline curve evaluation and its JVP and VJP with respect to the knots, the
+//!   control points and the parameters (`lekalo::derivatives`, `docs/theory/derivatives.md`);
 //! - `nurbs`: the same for NURBS curves, also with respect to the weights;
 //! - `interpolate`: interpolation at given parameters and knots, and its JVP and VJP with
 //!   respect to the data and the parameters (`lekalo::derivatives::Interpolant`);
@@ -17,7 +17,8 @@
 //!   parameters of its closest points to given points (with respect to the control points and
 //!   the points), with their JVP and VJP (`lekalo::derivatives::ArcLengthGradient`,
 //!   `ClosestParameters`);
-//! - `surface`: tensor-product B-spline surfaces, with respect to the net and `(u, v)`;
+//! - `surface`: tensor-product B-spline surfaces, with respect to the knots, the net and
+//!   `(u, v)`;
 //! - `tensor`: tensor-product B-splines in `N` variables, with respect to the net and the points.
 //!
 //! Batching (`jax.vmap`): every argument and result may carry the same leading batch axes (the

@@ -1,18 +1,20 @@
 //! Tensor-product B-spline surface evaluation `S(u, v) = Σ_k Σ_l N_{k,p}(u) N_{l,q}(v) P_{kl}`
-//! as XLA FFI handlers, with its JVP and VJP with respect to the control net `P` and the
-//! parameter pairs `(u, v)` (`docs/theory/derivatives.md`):
+//! as XLA FFI handlers, with its JVP and VJP with respect to the knots of each direction, the
+//! control net `P` and the parameter pairs `(u, v)` (`docs/theory/derivatives.md`, "Surfaces"
+//! and "Knots"):
 //!
 //! | target | arguments | attributes | results |
 //! |---|---|---|---|
 //! | `lekalo_surface_eval` | `knots_u` `(nku,)`, `knots_v` `(nkv,)`, net `(nu, nv, dim)`, uv `(m, 2)` | `degree_u`, `degree_v` | `S` `(m, dim)` |
-//! | `lekalo_surface_jvp` | `knots_u`, `knots_v`, net, uv, [`Ṗ` `(nu, nv, dim)`], [`(u̇, v̇)` `(m, 2)`] | `degree_u`, `degree_v`, `with_control`, `with_parameter` | `Ṡ` `(m, dim)` |
-//! | `lekalo_surface_vjp` | `knots_u`, `knots_v`, net, uv, `ḡ` `(m, dim)` | `degree_u`, `degree_v`, `with_control`, `with_parameter` | [`P̄` `(nu, nv, dim)`], [`(ū, v̄)` `(m, 2)`] |
+//! | `lekalo_surface_jvp` | `knots_u`, `knots_v`, net, uv, [`τ̇ᵘ` `(nku,)`], [`τ̇ᵛ` `(nkv,)`], [`Ṗ` `(nu, nv, dim)`], [`(u̇, v̇)` `(m, 2)`] | `degree_u`, `degree_v`, `with_knots_u`, `with_knots_v`, `with_control`, `with_parameter` | `Ṡ` `(m, dim)` |
+//! | `lekalo_surface_vjp` | `knots_u`, `knots_v`, net, uv, `ḡ` `(m, dim)` | `degree_u`, `degree_v`, `with_knots_u`, `with_knots_v`, `with_control`, `with_parameter` | [`τ̄ᵘ` `(nku,)`], [`τ̄ᵛ` `(nkv,)`], [`P̄` `(nu, nv, dim)`], [`(ū, v̄)` `(m, 2)`] |
 //!
 //! The bracketed buffers are present when the attribute of the same name is true; every buffer
 //! may have leading batch axes (the same for all). The values are
-//! [`BSplineSurface::eval_batch`]'s (P&T A3.5), the JVP [`BSplineSurface::eval_batch_jvp`]'s,
-//! the VJP [`BSplineSurface::eval_batch_vjp`]'s. For a batch element with few pairs against
-//! its net ([`in_place`]) the three are [`BorrowedSurface`]'s on the operand buffers themselves
+//! [`BSplineSurface::eval_batch`]'s (P&T A3.5), the JVP [`BSplineSurface::eval_batch_jvp`]'s
+//! plus [`BSplineSurface::eval_batch_knot_jvp`]'s, the VJP [`BSplineSurface::eval_batch_vjp`]'s
+//! and [`BSplineSurface::eval_batch_knot_vjp`]'s. For a batch element with few pairs against
+//! its net ([`in_place`]), and no knot derivative, the three are [`BorrowedSurface`]'s on the operand buffers themselves
 //! (the same numbers): no copy of the net, and only the knots and net points the pairs' cells
 //! read are checked.
 
@@ -34,7 +36,12 @@ ffi_targets! {
 }
 
 /// The attributes naming the tangents (JVP) and cotangents (VJP) present, in operand order.
-const KINDS: [&str; 2] = ["with_control", "with_parameter"];
+const KINDS: [&str; 4] = [
+    "with_knots_u",
+    "with_knots_v",
+    "with_control",
+    "with_parameter",
+];
 
 /// The residuals of every target (two knot vectors, the net, the pairs): the batch, the
 /// element size of each, the net's size and the dimension.
@@ -162,32 +169,51 @@ fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
     let degrees = degrees(call)?;
     let present = flags(call, KINDS);
     let Call { args, rets, .. } = call;
-    let (res, [dc, duv]) = tangents(args, 4, present)?;
+    let (res, [dku, dkv, dc, duv]) = tangents(args, 4, present)?;
     let layout = Layout::of(res)?;
-    let (batch, [_, _, sn, sp]) = (&layout.batch, layout.sizes);
+    let (batch, [sku, skv, sn, sp]) = (&layout.batch, layout.sizes);
     let tangent = single(rets)?;
     let sv = batch.size("tangent", tangent.dims, 2)?;
+    if let Some(a) = dku {
+        batch.expect("u knot tangent", a.dims, 1, sku)?;
+    }
+    if let Some(a) = dkv {
+        batch.expect("v knot tangent", a.dims, 1, skv)?;
+    }
     if let Some(a) = dc {
         batch.expect("control-net tangent", a.dims, 3, sn)?;
     }
     if let Some(a) = duv {
         batch.expect("parameter tangent", a.dims, 2, sp)?;
     }
-    // the values the JVP kernel also computes, not returned (XLA has them from the evaluation)
-    let small = layout.in_place(degrees);
+    let knots = dku.is_some() || dkv.is_some();
+    // the values the JVP kernel also computes, not returned (XLA has them from the evaluation);
+    // the knot derivatives need the built surface
+    let small = !knots && layout.in_place(degrees);
     let mut values = vec![0.0; if small { 0 } else { sv }];
+    let mut knot_part = vec![0.0; if knots { sv } else { 0 }];
     for b in 0..batch.count {
         let duv = duv.map(|a| pairs(element(a.data, sp, b)));
         let (uv, dc) = (layout.uv(res, b), dc.map(|a| element(a.data, sn, b)));
         let out = element_mut(tangent.data, sv, b);
-        let done = if small {
+        if small {
             let s = layout.borrowed(degrees, res, b)?;
             s.eval_batch_jvp(&uv, dc, duv.as_deref(), out)
-        } else {
-            let s = layout.surface(degrees, res, b)?;
-            s.eval_batch_jvp(&uv, dc, duv.as_deref(), &mut values, out)
-        };
-        done.map_err(|e| e.to_string())?;
+                .map_err(|e| e.to_string())?;
+            continue;
+        }
+        let s = layout.surface(degrees, res, b)?;
+        s.eval_batch_jvp(&uv, dc, duv.as_deref(), &mut values, out)
+            .map_err(|e| e.to_string())?;
+        if knots {
+            let du = dku.map(|a| element(a.data, sku, b));
+            let dv = dkv.map(|a| element(a.data, skv, b));
+            s.eval_batch_knot_jvp(&uv, du, dv, &mut values, &mut knot_part)
+                .map_err(|e| e.to_string())?;
+            for (o, k) in out.iter_mut().zip(&knot_part) {
+                *o += k;
+            }
+        }
     }
     Ok(())
 }
@@ -199,32 +225,48 @@ fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
     let (res, [g]) = tangents(args, 4, [true])?;
     let g = g.ok_or("no cotangent")?;
     let layout = Layout::of(res)?;
-    let (batch, [_, _, sn, sp]) = (&layout.batch, layout.sizes);
+    let (batch, [sku, skv, sn, sp]) = (&layout.batch, layout.sizes);
     let sg = batch.size("cotangent", g.dims, 2)?;
-    let [mut gc, mut guv] = cotangents(rets, present)?;
+    let [mut gku, mut gkv, mut gc, mut guv] = cotangents(rets, present)?;
+    if let Some(a) = &gku {
+        batch.expect("u knot cotangent", a.dims, 1, sku)?;
+    }
+    if let Some(a) = &gkv {
+        batch.expect("v knot cotangent", a.dims, 1, skv)?;
+    }
     if let Some(a) = &gc {
         batch.expect("control-net cotangent", a.dims, 3, sn)?;
     }
     if let Some(a) = &guv {
         batch.expect("parameter cotangent", a.dims, 2, sp)?;
     }
+    let knots = gku.is_some() || gkv.is_some();
     // the parameter cotangent as pairs, copied into the result after each element
     let mut pairs_out = vec![[0.0; 2]; if guv.is_some() { sp / 2 } else { 0 }];
-    let small = layout.in_place(degrees);
+    let small = !knots && layout.in_place(degrees);
     for b in 0..batch.count {
         let (uv, g) = (layout.uv(res, b), element(g.data, sg, b));
         let gc = gc.as_mut().map(|a| element_mut(a.data, sn, b));
+        let wants_rest = gc.is_some() || guv.is_some();
         let guv_b = guv.is_some().then_some(&mut pairs_out[..]);
-        let done = if small {
+        if small {
             layout
                 .borrowed(degrees, res, b)?
                 .eval_batch_vjp(&uv, g, gc, guv_b)
+                .map_err(|e| e.to_string())?;
         } else {
-            layout
-                .surface(degrees, res, b)?
-                .eval_batch_vjp(&uv, g, gc, guv_b)
-        };
-        done.map_err(|e| e.to_string())?;
+            let s = layout.surface(degrees, res, b)?;
+            if knots {
+                let gu = gku.as_mut().map(|a| element_mut(a.data, sku, b));
+                let gv = gkv.as_mut().map(|a| element_mut(a.data, skv, b));
+                s.eval_batch_knot_vjp(&uv, g, gu, gv)
+                    .map_err(|e| e.to_string())?;
+            }
+            if wants_rest {
+                s.eval_batch_vjp(&uv, g, gc, guv_b)
+                    .map_err(|e| e.to_string())?;
+            }
+        }
         if let Some(a) = guv.as_mut() {
             element_mut(a.data, sp, b).copy_from_slice(pairs_out.as_flattened());
         }

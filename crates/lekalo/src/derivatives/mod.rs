@@ -1,6 +1,6 @@
 //! Derivatives of evaluation for differentiable programs: the Jacobian-vector products (JVP,
 //! forward mode) and vector-Jacobian products (VJP, reverse mode) of batch evaluation, with
-//! respect to the control points and to the parameters (`docs/theory/derivatives.md`).
+//! respect to the control points, the parameters and the knots (`docs/theory/derivatives.md`).
 //!
 //! A spline is linear in its control points: the Jacobian of `C(t_i)` with respect to `P_j` is
 //! the basis matrix `N_{j,p}(t_i)` times the identity, whose row `i` has `p + 1` non-zero
@@ -18,6 +18,10 @@
 //!   [`BorrowedTensor`], the values, JVP and VJP of `curve.rs`, `nurbs.rs`, `surface.rs` and
 //!   `tensor.rs` for a few parameters on borrowed knots, control points (nets) and weights,
 //!   reading and checking only the spans used (no O(n) copy or validation a call).
+//! - `knots.rs`: [`crate::BSplineCurve::eval_batch_knot_jvp`],
+//!   [`crate::BSplineCurve::eval_batch_knot_vjp`] and the same for [`crate::BSplineSurface`]
+//!   (each direction's knots): the derivatives with respect to the knots, by differentiating
+//!   knot insertion.
 //! - `nurbs.rs`: the same three for [`crate::NurbsCurve`], with respect to the control points,
 //!   the weights and the parameters.
 //! - `surface.rs`: the same three for [`crate::BSplineSurface`] at pairs `(u, v)`.
@@ -58,6 +62,9 @@ mod fitting;
 mod geometry;
 mod interpolant;
 mod interpolation;
+mod knots;
+#[cfg(test)]
+mod knots_tests;
 mod located;
 mod nurbs;
 mod power_sums;

@@ -54,7 +54,7 @@ impl PairBasis {
 /// in index order: the order of the forward evaluation (P&T A3.5 as `BSplineSurface::eval`
 /// runs it), so the same bits.
 #[allow(clippy::too_many_arguments)] // a net, its layout, a corner, two bases and two buffers
-fn combine(
+pub(super) fn combine(
     net: &[f64],
     nv: usize,
     dim: usize,
