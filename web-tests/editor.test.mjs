@@ -874,8 +874,35 @@ async function assertHeaderComplete(page, what) {
   assert.ok(label && label.drawn, `${what}: the import control is visible`);
 }
 
-test('Narrow windows: at 800 px and on a phone every mode fits, the canvas keeps its shape and shows coordinates', async (page) => {
-  for (const viewport of [{ width: 800, height: 900 }, { width: 390, height: 844 }]) {
+// the grid's coordinates as drawn on screen: each inside the canvas with a margin of at least
+// MARGIN screen pixels, and no two of them touching (boxes of the rendered glyphs)
+async function assertGridLabelsReadable(page, what) {
+  const MARGIN = 3;
+  const { canvas, boxes } = await page.evaluate(() => {
+    const c = document.getElementById('canvas').getBoundingClientRect();
+    const boxes = [...document.querySelectorAll('#grid text.grid-label')].map((t) => {
+      const r = t.getBoundingClientRect();
+      return { text: t.textContent, left: r.left, right: r.right, top: r.top, bottom: r.bottom };
+    });
+    return { canvas: { left: c.left, right: c.right, top: c.top, bottom: c.bottom }, boxes };
+  });
+  for (const b of boxes) {
+    assert.ok(b.left >= canvas.left + MARGIN && b.right <= canvas.right - MARGIN
+      && b.top >= canvas.top + MARGIN && b.bottom <= canvas.bottom - MARGIN,
+    `${what}: coordinate ${b.text} at ${b.left.toFixed(1)}..${b.right.toFixed(1)} × ${b.top.toFixed(1)}..${b.bottom.toFixed(1)} `
+      + `is not ${MARGIN} px inside the canvas ${canvas.left.toFixed(1)}..${canvas.right.toFixed(1)} × ${canvas.top.toFixed(1)}..${canvas.bottom.toFixed(1)}`);
+  }
+  for (let i = 0; i < boxes.length; i++) {
+    for (let j = i + 1; j < boxes.length; j++) {
+      const [a, b] = [boxes[i], boxes[j]];
+      const apart = a.right + 1 <= b.left || b.right + 1 <= a.left || a.bottom <= b.top || b.bottom <= a.top;
+      assert.ok(apart, `${what}: coordinates ${a.text} and ${b.text} overlap`);
+    }
+  }
+}
+
+test('Narrow windows: at 1200 px, 800 px and on a phone every mode fits, the canvas keeps its shape and shows coordinates inside it, apart', async (page) => {
+  for (const viewport of [{ width: 1200, height: 820 }, { width: 800, height: 900 }, { width: 390, height: 844 }]) {
     await page.setViewportSize(viewport);
     for (const mode of ['bspline', 'interpolate', 'bezier', 'blend', 'corners', 'spline', 'quasi', 'fit']) {
       await page.goto(base);
@@ -894,6 +921,7 @@ test('Narrow windows: at 800 px and on a phone every mode fits, the canvas keeps
       assert.ok(Math.abs(box.canvas.width / box.canvas.height - 800 / 500) < 0.01, `${what}: canvas aspect ${box.canvas.width}×${box.canvas.height}`);
       const labels = await page.locator('#grid text.grid-label').allTextContents();
       assert.ok(labels.length >= 8 && (mode === 'quasi' || labels.includes('5')), `${what}: grid coordinates ${labels}`);
+      await assertGridLabelsReadable(page, what);
       await assertHeaderComplete(page, what);
     }
     // a click lands where the pointer is, whatever the drawing's scale
@@ -966,7 +994,8 @@ let failed = 0;
 const browser = await chromium.launch({ executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
   args: CHROMIUM_ARGS, headless: true });
 try {
-  for (const t of tests) {
+  // ONLY=text runs the tests whose name contains it (scripts/test-browser.sh runs them all)
+  for (const t of tests.filter((t) => !process.env.ONLY || t.name.includes(process.env.ONLY))) {
     const context = await browser.newContext({ viewport: { width: 1200, height: 820 } });
     const page = await context.newPage();
     const problems = [];
@@ -989,5 +1018,5 @@ try {
 } finally {
   await browser.close();
 }
-console.log(`${tests.length - failed} passed, ${failed} failed; screenshots in ${artifacts}`);
+console.log(`${tests.filter((t) => !process.env.ONLY || t.name.includes(process.env.ONLY)).length - failed} passed, ${failed} failed; screenshots in ${artifacts}`);
 process.exit(failed ? 1 : 0);

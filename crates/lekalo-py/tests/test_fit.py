@@ -226,6 +226,20 @@ def test_fit_tolerance():
     assert np.allclose(np.linalg.norm(c(rep["params"]) - pts, axis=1), rep["deviations"], atol=1e-13)
 
 
+def test_fit_tolerance_deviations_are_the_residuals_at_the_closest_params():
+    # the README tour's noisy sine: within 0.01 at each point's closest point, where the
+    # residual is measured; at the chord-length parameters one point is 0.01006 away
+    x = np.arange(80) / 16
+    pts = np.column_stack([x, np.sin(x) + 0.002 * (np.arange(80) % 5 - 2)])
+    c, rep = lekalo.fit_tolerance(pts, 0.01)
+    residuals = np.linalg.norm(c(rep["closest_params"]) - pts, axis=1)
+    # evaluated here by another path than the library's report: equal to rounding of the data
+    np.testing.assert_allclose(residuals, rep["deviations"], rtol=0, atol=1e-14 * np.abs(pts).max())
+    assert residuals.max() <= 0.01
+    assert rep["worst_param"] == rep["closest_params"][rep["worst_index"]]
+    assert np.linalg.norm(c(rep["params"]) - pts, axis=1).max() > 0.01
+
+
 def test_fit_tolerance_takes_the_tolerance_keyword_of_every_query():
     # one name for an absolute tolerance across the package (and `--tolerance` on the command
     # line); `tol` is not a keyword of lekalo's own functions

@@ -49,6 +49,40 @@ pub(super) fn add_points(fig: &mut Figure, pts: &Points, label: &str, color: &st
     }
 }
 
+/// The first stretch of `c` from its start, while it stays within `reach` of it (sampled finely:
+/// the figure magnifies it).
+fn near_start(c: &BSplineCurve, reach: f64) -> Result<Vec<[f64; 2]>> {
+    let (a, b) = c.domain();
+    let start = c.eval(a)?;
+    let mut line = Vec::new();
+    for i in 0..=4000 {
+        let p = c.eval(a + 0.05 * (b - a) * f64::from(i) / 4000.0)?;
+        if (p[0] - start[0]).hypot(p[1] - start[1]) > reach {
+            break;
+        }
+        line.push([p[0], p[1]]);
+    }
+    Ok(line)
+}
+
+/// An arrow from `from` along `direction`, `length` long (in the figure's units, for figures of
+/// equal aspect): its shaft and its head as two polylines of one series.
+fn arrow(label: &str, from: [f64; 2], direction: [f64; 2], length: f64, color: &str) -> Series {
+    let norm = direction[0].hypot(direction[1]);
+    let u = [direction[0] / norm, direction[1] / norm];
+    let tip = [from[0] + length * u[0], from[1] + length * u[1]];
+    let (head, half) = (0.14 * length, 0.05 * length);
+    let wing = |side: f64| {
+        [
+            tip[0] - head * u[0] - side * half * u[1],
+            tip[1] - head * u[1] + side * half * u[0],
+        ]
+    };
+    let mut s = Series::new(Some(label), vec![from, tip], Style::Line, color);
+    s.paths.push(vec![wing(1.0), tip, wing(-1.0)]);
+    s
+}
+
 /// Control points as flat numbers.
 fn flat(c: &BSplineCurve) -> Vec<f64> {
     c.control_points().as_slice().to_vec()
@@ -265,6 +299,7 @@ pub(super) fn end_conditions(s: &mut Section) -> Result<()> {
     let mut fig = Figure::new("End conditions on P&T Example 9.1", true);
     fig.axis_labels = ("x".into(), "y".into());
     let mut rows = Vec::new();
+    let mut curves = Vec::new();
     for (k, (name, p, knots, end, expected, shown)) in cases.into_iter().enumerate() {
         let c = CurveInterpolation::new(p)
             .parametrization(Parametrization::ChordLength)
@@ -301,7 +336,8 @@ pub(super) fn end_conditions(s: &mut Section) -> Result<()> {
             c.knots().len().to_string(),
             shown_ends,
         ]);
-        add_curve(&mut fig, &Object::BSpline(c), name, PALETTE[k])?;
+        add_curve(&mut fig, &Object::BSpline(c.clone()), name, PALETTE[k])?;
+        curves.push((name, c));
     }
     add_points(&mut fig, &q, "data points", PALETTE[7], false);
     s.figure(
@@ -310,9 +346,42 @@ pub(super) fn end_conditions(s: &mut Section) -> Result<()> {
             "Five interpolants of the same points with conditions at the ends: first \
              derivatives d0 = (1, 2) and dn = (−3, −1) (cubic and quadratic on averaged knots, \
              and the C² cubic with knots at the parameters), second derivatives (2, −1) and \
-             (0.5, 4), and the natural spline with zero second derivatives. Look at the ends: \
-             the three curves with given first derivatives leave (0, 0) in the same direction, \
-             (1, 2); the conditions on second derivatives leave the direction free.",
+             (0.5, 4), and the natural spline with zero second derivatives. At this scale the \
+             end conditions change the shape of the first and last pieces; the direction in \
+             which each curve leaves (0, 0) is seen in the next figure, magnified.",
+        )
+        .theory("interpolation.md#end-derivatives-of-any-degree"),
+    );
+    // the start magnified: a derivative of length |d0| = √5 on a curve some 17 units long
+    // (chord-length parameters on [0, 1]) holds the curve to its direction for a few hundredths
+    // of a unit only, so the leaving direction shows only near (0, 0)
+    let reach = 0.02;
+    let mut zoom = Figure::new("Leaving (0, 0): the start magnified", true);
+    zoom.axis_labels = ("x".into(), "y".into());
+    for (k, (name, c)) in curves.iter().enumerate() {
+        zoom.series.push(Series::new(
+            Some(name),
+            near_start(c, reach)?,
+            Style::Line,
+            PALETTE[k],
+        ));
+    }
+    zoom.series.push(arrow(
+        "given direction d0 = (1, 2)",
+        [0.0, 0.0],
+        [d0[0], d0[1]],
+        0.9 * reach,
+        "#777777",
+    ));
+    s.figure(
+        zoom,
+        Caption::new(
+            "The same five curves within 0.02 of the first point (0, 0), magnified some 400 \
+             times. The three with given first derivatives (blue, red, and green, dashed where it \
+             lies on the blue) leave along the grey arrow, the given direction d0 = (1, 2), and turn within a few hundredths \
+             towards the next point: |d0| = √5 is small beside the curve's length, 17 on the \
+             parameter interval [0, 1]. The two with conditions on second derivatives (pink, \
+             orange, nearly one line) leave in a direction of their own, about 20° lower.",
         )
         .theory("interpolation.md#end-derivatives-of-any-degree"),
     );

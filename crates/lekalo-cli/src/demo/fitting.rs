@@ -66,46 +66,45 @@ pub(super) fn fitting(s: &mut Section) -> Result<()> {
         ))
         .theory("fitting.md#tolerance"),
     );
+    // a distance per data point, drawn as what it is: a stem from 0 up to the distance at
+    // each point (the three fits' stems side by side), not a line joining the points
     let mut res = Figure::new("How far each point lies from each fit", false);
-    res.size = (640.0, 320.0);
+    res.size = (960.0, 340.0);
     res.axis_labels = ("data point k".into(), "distance to the fit".into());
-    let by_index = |d: &[f64]| -> Vec<[f64; 2]> {
-        d.iter().enumerate().map(|(k, v)| [k as f64, *v]).collect()
-    };
     for (i, (label, d)) in [
         (
             "least squares, 10 control points".to_string(),
-            by_index(&lsq.report.residuals),
+            &lsq.report.residuals,
         ),
         (
             "smoothing spline (GCV)".to_string(),
-            by_index(&smooth.report.residuals),
+            &smooth.report.residuals,
         ),
         (
             format!("within {tol}: {n_tol} control points"),
-            by_index(&within.deviations),
+            &within.deviations,
         ),
     ]
     .into_iter()
     .enumerate()
     {
-        let mut line = Series::new(Some(&label), d, Style::Line, PALETTE[[0, 1, 3][i]]);
-        line.dash = Some(["", "9 4", "2 3"][i].to_string());
-        res.series.push(line);
+        res.series
+            .push(stems(&label, d, STEM_SHIFT[i], PALETTE[[0, 1, 3][i]]));
     }
     res.series.push(Series::new(
         Some(&format!("tolerance {tol}")),
-        vec![[0.0, tol], [pts.len() as f64 - 1.0, tol]],
+        vec![[-0.5, tol], [pts.len() as f64 - 0.5, tol]],
         Style::Dashed,
         "#777777",
     ));
     s.figure(
         res,
         Caption::new(
-            "The distance from each data point to each fit: least squares (blue, solid) and the \
-             smoothing spline (orange, dashed) at the point's parameter, the tolerance fit \
-             (pink, dotted) to its closest point. The grey dashed line is the tolerance; the \
-             scatter is the noise, which the fits follow more or less closely (table below).",
+            "The distance from each data point to each fit, one stem per point and fit: least \
+             squares (blue, left) and the smoothing spline (orange, middle) at the point's \
+             parameter, the tolerance fit (pink, right) to its closest point. The grey dashed \
+             line is the tolerance, which no pink stem passes; the heights are the noise, which \
+             the fits follow more or less closely (table below).",
         )
         .theory("fitting.md#residuals"),
     );
@@ -155,6 +154,23 @@ pub(super) fn fitting(s: &mut Section) -> Result<()> {
         1e-12,
     );
     Ok(())
+}
+
+/// Where the stems of the three fits stand beside their data point's index.
+const STEM_SHIFT: [f64; 3] = [-0.27, 0.0, 0.27];
+
+/// A stem plot: a vertical segment from 0 to `d[k]` at `k + shift` for every point `k`.
+fn stems(label: &str, d: &[f64], shift: f64, color: &str) -> Series {
+    let mut s = Series::new(Some(label), Vec::new(), Style::Line, color);
+    s.paths = d
+        .iter()
+        .enumerate()
+        .map(|(k, &v)| {
+            let x = k as f64 + shift;
+            vec![[x, 0.0], [x, v]]
+        })
+        .collect();
+    s
 }
 
 /// A dose–response curve: noisy samples of a rising, saturating response between 0 and 1,

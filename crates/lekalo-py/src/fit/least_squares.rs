@@ -190,8 +190,9 @@ pub(crate) fn fit_least_squares<'py>(
 /// A B-spline of degree `k` within `tolerance` (a distance in the data's units) of every point,
 /// with few control points (`docs/theory/fitting.md#tolerance`). `deviation` is `"distance"`
 /// (to the curve, by projection) or `"parameter"` (at the data parameter). Returns
-/// `(curve, report)` with `params`, `deviations`, `max_deviation`, `worst_index`,
-/// `worst_param`.
+/// `(curve, report)` with `params`, `closest_params` (each point's closest point's parameter,
+/// where its deviation is measured: `curve(closest_params)` is within `tolerance` of the points),
+/// `deviations`, `max_deviation`, `worst_index`, `worst_param`.
 #[pyfunction]
 #[pyo3(signature = (points, tolerance, k = IntArg::of(3), *, deviation = "distance", parametrization = None), text_signature = "(points, tolerance, k=3, *, deviation=\"distance\", parametrization=None)")]
 pub(crate) fn fit_tolerance<'py>(
@@ -223,6 +224,7 @@ pub(crate) fn fit_tolerance<'py>(
         .map_err(lib_err)?;
     let d = PyDict::new(py);
     d.set_item("params", vec_array(py, &f.params))?;
+    d.set_item("closest_params", vec_array(py, &f.closest_params))?;
     d.set_item("deviations", vec_array(py, &f.deviations))?;
     d.set_item("max_deviation", f.max_deviation)?;
     d.set_item("worst_index", f.worst_index)?;

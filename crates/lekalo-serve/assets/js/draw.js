@@ -68,17 +68,31 @@ export function drawGrid() {
   gridFrom = key;
   const g = $('grid');
   g.textContent = '';
-  // grid lines with their coordinates: x along the bottom edge, y along the left edge
+  // grid lines with their coordinates: x along the bottom edge, y along the left edge, every
+  // label half a font size (about 5 screen pixels) inside the canvas, so that on a phone they do
+  // not touch its edge; a label whose box would leave the canvas or meet the other row is left out
   const label = (v, step) => String(Number(v.toFixed(Math.max(0, -Math.floor(Math.log10(step))))));
+  const size = Number(font);
+  const margin = 0.5 * size;
+  // a text's box around its baseline (ascent and descent of the sans-serif fonts) and width
+  const [ascent, descent] = [0.95 * size, 0.3 * size];
+  const width = (text) => 0.62 * size * text.length;
+  const xBaseline = H - margin - descent;
+  const xRowTop = xBaseline - ascent;
   const step = niceStep((world.x1 - world.x0) / 10);
   for (let x = Math.ceil(world.x0 / step) * step; x <= world.x1; x += step) {
     el('line', { x1: sx(x), x2: sx(x), y1: 0, y2: H, class: 'gridline' }, g);
-    if (sx(x) > 24) el('text', { x: sx(x), y: H - 4, class: 'grid-label', 'font-size': font, 'text-anchor': 'middle' }, g).textContent = label(x, step);
+    const text = label(x, step);
+    const half = width(text) / 2;
+    if (sx(x) - half < margin || sx(x) + half > W - margin) continue;
+    el('text', { x: sx(x), y: xBaseline, class: 'grid-label', 'font-size': font, 'text-anchor': 'middle' }, g).textContent = text;
   }
   const ystep = niceStep((world.y1 - world.y0) / 6);
   for (let y = Math.ceil(world.y0 / ystep) * ystep; y <= world.y1; y += ystep) {
     el('line', { x1: 0, x2: W, y1: sy(y), y2: sy(y), class: 'gridline' }, g);
-    if (sy(y) < H - 2 * font) el('text', { x: 4, y: sy(y) - 3, class: 'grid-label', 'font-size': font }, g).textContent = label(y, ystep);
+    const baseline = sy(y) - 3;
+    if (baseline - ascent < margin || baseline + descent > xRowTop - 2) continue;
+    el('text', { x: margin, y: baseline, class: 'grid-label', 'font-size': font }, g).textContent = label(y, ystep);
   }
 }
 
@@ -101,7 +115,9 @@ function drawBounds(bounds, v, curve) {
   const size = Math.min(26, 13 * W / shown);
   // the room the labels may use: the canvas without the grid's coordinates (drawGrid's font)
   const grid = Math.min(24, 11 * W / shown);
-  const room = [8 + 1.8 * grid, 0, W, H - 4 - 1.2 * grid];
+  // (three characters of y coordinates half a size from the left edge, the row of x coordinates
+  // 1.75 sizes high at the bottom)
+  const room = [0.5 * grid + 3 * 0.62 * grid + 3, 0, W, H - 1.75 * grid - 2];
   const placed = [];
   for (const { y, text, outside } of bounds) {
     el('line', { x1: sx(x0), x2: sx(x1), y1: sy(y), y2: sy(y), class: 'bound', 'data-bound': text }, g);

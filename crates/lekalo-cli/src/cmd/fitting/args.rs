@@ -65,8 +65,8 @@ every x, not only at the data; repeat an option for several intervals; =X or @X:
   --min V[@A:B] --max V[@A:B]   bounds on y;  --through X=V  y(X) = V;  --slope-at X=V  y'(X) = V
   --integral A:B=V  the integral of y over [A, B];  with --periodic (--lsq): a periodic y(x)
 
-The report (residual max and RMS, λ or s, control points; with --tolerance first the deviation
-that the tolerance bounds, then the residuals at the fitted parameters, which may exceed it)
+The report (residual max and RMS, λ or s, control points; with --tolerance the residuals are
+the deviations the tolerance bounds, at each point's closest point, all within it)
 goes to standard error, or with --json the output is {\"object\": …, \"report\": …};
 --per-point adds every residual.
 

@@ -214,7 +214,9 @@ fn fit_curve(
         if a.per_point {
             report["deviations"] = json!(t.deviations);
         }
-        let d = FitData::new(pts.as_view(), &t.params)?;
+        // the residuals at the parameters the deviations were measured at (each point's
+        // closest point on the curve): they are the deviations, within the tolerance
+        let d = FitData::new(pts.as_view(), &t.closest_params)?;
         let fit = least_squares_report(&t.curve, &d)?;
         return Ok((fit, report, pts.clone()));
     } else {

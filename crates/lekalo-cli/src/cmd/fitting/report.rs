@@ -50,22 +50,20 @@ pub(super) fn finish(
 
 pub(super) fn report_line(r: &Value) -> String {
     let mut s = format!("fit: {} control points", r["control_points"]);
-    if !r["tolerance"].is_null() {
-        // The tolerance bounds the deviation (each point's distance to the curve, or to its
-        // point at the data parameter with --parameter-deviation). The residuals are taken at
-        // the parameters the fit assigned to the points and may exceed it: said apart, so that
-        // a residual above the tolerance does not read as a broken promise.
+    if r["tolerance"].is_null() {
         s.push_str(&format!(
-            ", deviation max {} (point {}) within the tolerance {}; at the fitted parameters:",
-            r["max_deviation"], r["worst_index"], r["tolerance"]
+            ", residual max {} (point {}), RMS {}, weighted RSS {}",
+            r["max_residual"], r["max_index"], r["rms"], r["weighted_rss"]
         ));
     } else {
-        s.push(',');
+        // the tolerance bounds the deviation (each point's distance to the curve, or to its
+        // point at the data parameter with --parameter-deviation); the residuals are taken at
+        // the parameters of those points, so they are the deviations and one line says both
+        s.push_str(&format!(
+            ", deviation max {} (point {}) within the tolerance {}, RMS {}, weighted RSS {}",
+            r["max_deviation"], r["worst_index"], r["tolerance"], r["rms"], r["weighted_rss"]
+        ));
     }
-    s.push_str(&format!(
-        " residual max {} (point {}), RMS {}, weighted RSS {}",
-        r["max_residual"], r["max_index"], r["rms"], r["weighted_rss"]
-    ));
     for key in ["lambda", "s"] {
         if !r[key].is_null() {
             s.push_str(&format!(", {key} {}", r[key]));

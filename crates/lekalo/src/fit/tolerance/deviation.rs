@@ -18,15 +18,31 @@ pub(super) fn deviations(
     how: Deviation,
     skip_below: f64,
 ) -> Result<Vec<f64>> {
+    Ok(deviations_with_feet(curve, points, params, at_param, how, skip_below)?.0)
+}
+
+/// [`deviations`] and, per point, the parameter of the closest point found by the projection
+/// (`NaN` where the deviation is the one at the data parameter).
+pub(super) fn deviations_with_feet(
+    curve: &BSplineCurve,
+    points: PointsRef<'_>,
+    params: &[f64],
+    at_param: &[f64],
+    how: Deviation,
+    skip_below: f64,
+) -> Result<(Vec<f64>, Vec<f64>)> {
     let mut dev = at_param.to_vec();
+    let mut feet = vec![f64::NAN; dev.len()];
     if how == Deviation::Distance {
         let todo: Vec<usize> = (0..dev.len()).filter(|&i| dev[i] > skip_below).collect();
-        let feet = project(curve, points, params, &todo)?;
-        for (&i, &(_, d)) in todo.iter().zip(&feet) {
-            dev[i] = dev[i].min(d);
+        let found = project(curve, points, params, &todo)?;
+        for (&i, &(u, d)) in todo.iter().zip(&found) {
+            if d < dev[i] {
+                (dev[i], feet[i]) = (d, u);
+            }
         }
     }
-    Ok(dev)
+    Ok((dev, feet))
 }
 
 pub(super) fn deviations_full(
@@ -36,8 +52,31 @@ pub(super) fn deviations_full(
     how: Deviation,
     skip_below: f64,
 ) -> Result<Vec<f64>> {
+    Ok(deviations_full_with_feet(curve, points, params, how, skip_below)?.0)
+}
+
+/// [`deviations_full`] with the feet of [`deviations_with_feet`].
+pub(super) fn deviations_full_with_feet(
+    curve: &BSplineCurve,
+    points: PointsRef<'_>,
+    params: &[f64],
+    how: Deviation,
+    skip_below: f64,
+) -> Result<(Vec<f64>, Vec<f64>)> {
     let at = at_parameter(curve, points, params)?;
-    deviations(curve, points, params, &at, how, skip_below)
+    deviations_with_feet(curve, points, params, &at, how, skip_below)
+}
+
+/// Per point the smaller of two measurements `(deviation, foot)` of the same curve (a foot
+/// `NaN`: at the data parameter).
+pub(super) fn smaller(a: (Vec<f64>, Vec<f64>), b: (Vec<f64>, Vec<f64>)) -> (Vec<f64>, Vec<f64>) {
+    let (mut dev, mut feet) = a;
+    for (i, (d, f)) in b.0.into_iter().zip(b.1).enumerate() {
+        if d < dev[i] {
+            (dev[i], feet[i]) = (d, f);
+        }
+    }
+    (dev, feet)
 }
 
 /// Points measured per block by [`Tracked::accept`] before it looks for one beyond `tol`.
@@ -51,7 +90,7 @@ pub(super) const TRIAL_BLOCK: usize = 1024;
 pub(super) struct Tracked {
     at: Vec<f64>,
     pub(super) dev: Vec<f64>,
-    feet: Vec<f64>,
+    pub(super) feet: Vec<f64>,
     reach: f64,
     how: Deviation,
 }

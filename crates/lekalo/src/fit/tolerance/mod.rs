@@ -12,10 +12,11 @@ mod refine;
 #[cfg(test)]
 mod tests;
 
-use deviation::{deviations_full, project};
+use deviation::{deviations_full_with_feet, smaller};
 use refine::{fit_sample_first, refine, SAMPLE_ABOVE, SAMPLE_SIZE};
 
 use crate::error::{readable, Error, Result};
+use crate::fit::{FitData, FitReport};
 use crate::interpolate::{parametrize, Parametrization};
 use crate::numeric::progress::Progress;
 use crate::points::PointsRef;
@@ -65,13 +66,20 @@ pub struct ToleranceFit {
     pub curve: BSplineCurve,
     /// The data parameters used.
     pub params: Vec<f64>,
-    /// Deviation of every point (as measured by [`ToleranceOptions::deviation`]).
+    /// The curve parameter at which each point's deviation is measured: of its closest point
+    /// found on the curve ([`Deviation::Distance`]), or its data parameter
+    /// ([`Deviation::Parameter`]). The residuals at these parameters are the deviations, so a
+    /// report of the fit at them (e.g. [`FitReport::of`](crate::fit::FitReport::of)) shows
+    /// every residual within `tol`.
+    pub closest_params: Vec<f64>,
+    /// Deviation of every point, `|C(closest_params[k]) − Q_k|` (as measured by
+    /// [`ToleranceOptions::deviation`]).
     pub deviations: Vec<f64>,
     /// The largest deviation (`≤ tol`).
     pub max_deviation: f64,
     /// Index of the point where it occurs.
     pub worst_index: usize,
-    /// Curve parameter of the closest point to that data point.
+    /// Curve parameter of the closest point to that data point (`closest_params[worst_index]`).
     pub worst_param: f64,
 }
 
@@ -153,20 +161,31 @@ pub fn fit_tolerance_with_progress(
         });
     }
     let params = parametrize(points, opts.parametrization)?;
-    let (curve, dev) = if points.len() > SAMPLE_ABOVE {
+    let (curve, dev, feet) = if points.len() > SAMPLE_ABOVE {
         fit_sample_first(points, &params, opts, progress, SAMPLE_SIZE)?
     } else {
-        let (curve, dev) = refine(points, &params, opts, progress, &[])?;
+        let (curve, dev, feet) = refine(points, &params, opts, progress, &[])?;
         // the distances of the final curve from every data parameter; the removal kept upper
         // bounds (distances to points of this same curve), so each point keeps the smaller
-        let dev = if opts.deviation == Deviation::Distance {
-            let fresh = deviations_full(&curve, points, &params, opts.deviation, -1.0)?;
-            dev.iter().zip(fresh).map(|(&d, f)| d.min(f)).collect()
+        if opts.deviation == Deviation::Distance {
+            let fresh = deviations_full_with_feet(&curve, points, &params, opts.deviation, -1.0)?;
+            let (dev, feet) = smaller((dev, feet), fresh);
+            (curve, dev, feet)
         } else {
-            dev
-        };
-        (curve, dev)
+            (curve, dev, feet)
+        }
     };
+    // each deviation measured again on the whole curve at the parameter where it was found (the
+    // removal measured some on a piece of the curve, equal to it up to rounding), as the report
+    // of a fit measures residuals: the deviations are the residuals at `closest_params`, bit for
+    // bit, and the bound below holds for what a report shows
+    let closest_params: Vec<f64> = feet
+        .iter()
+        .zip(&params)
+        .map(|(&f, &u)| if f.is_nan() { u } else { f })
+        .collect();
+    debug_assert_eq!(dev.len(), points.len(), "a deviation per point");
+    let dev = FitReport::of(&curve, &FitData::new(points, &closest_params)?)?.residuals;
     let (mut worst_index, mut max_deviation) = (0, 0.0);
     for (i, &d) in dev.iter().enumerate() {
         if d > max_deviation {
@@ -184,10 +203,11 @@ pub fn fit_tolerance_with_progress(
             ),
         });
     }
-    let worst_param = project(&curve, points, &params, &[worst_index])?[0].0;
+    let worst_param = closest_params[worst_index];
     Ok(ToleranceFit {
         curve,
         params,
+        closest_params,
         deviations: dev,
         max_deviation,
         worst_index,

@@ -2,7 +2,7 @@
 //! where points are beyond `tol`, then removed where a local least-squares refit stays within
 //! it (`docs/theory/fitting.md#tolerance`).
 
-use super::deviation::{deviations, deviations_full, Tracked};
+use super::deviation::{deviations, deviations_full, deviations_full_with_feet, smaller, Tracked};
 use super::{Deviation, ToleranceOptions};
 use crate::basis::{basis_funs_into, BasisScratch};
 use crate::error::{Error, Result};
@@ -37,26 +37,24 @@ pub(super) fn fit_sample_first(
     opts: &ToleranceOptions,
     progress: &Progress<'_>,
     sample_size: usize,
-) -> Result<(BSplineCurve, Vec<f64>)> {
+) -> Result<(BSplineCurve, Vec<f64>, Vec<f64>)> {
     let (flat, sample_params) = sample_of(points, params, sample_size);
     let sample = PointsRef::from_flat(points.dim(), &flat)?;
-    let (curve, _) = refine(sample, &sample_params, opts, progress, &[])?;
+    let (curve, _, _) = refine(sample, &sample_params, opts, progress, &[])?;
     // the sample's curve against every point: distances of all (exact per point, projected)
     let skip = if opts.deviation == Deviation::Distance {
         -1.0
     } else {
         opts.tol
     };
-    let dev = deviations_full(&curve, points, params, opts.deviation, skip)?;
+    let (dev, feet) = deviations_full_with_feet(&curve, points, params, opts.deviation, skip)?;
     if dev.iter().all(|&d| d <= opts.tol) {
-        return Ok((curve, dev));
+        return Ok((curve, dev, feet));
     }
-    let (curve, dev) = refine(points, params, opts, progress, &interior_knots(&curve))?;
-    let fresh = deviations_full(&curve, points, params, opts.deviation, -1.0)?;
-    Ok((
-        curve,
-        dev.iter().zip(fresh).map(|(&d, f)| d.min(f)).collect(),
-    ))
+    let (curve, dev, feet) = refine(points, params, opts, progress, &interior_knots(&curve))?;
+    let fresh = deviations_full_with_feet(&curve, points, params, opts.deviation, -1.0)?;
+    let (dev, feet) = smaller((dev, feet), fresh);
+    Ok((curve, dev, feet))
 }
 
 /// Every `s`-th point and its parameter, `s` = `⌈n / size⌉`, and the last point.
@@ -79,15 +77,16 @@ pub(super) fn sample_of(
 }
 
 /// Knot insertion and removal of [`fit_tolerance`](super::fit_tolerance) from the interior knots `start`, at the
-/// data parameters `params`: the curve and an upper bound of every point's deviation. Knots of
-/// `start` are kept; only those inserted are tried for removal.
+/// data parameters `params`: the curve, an upper bound of every point's deviation and the foot
+/// where that bound was measured (`NaN`: at the data parameter). Knots of `start` are kept; only
+/// those inserted are tried for removal.
 pub(super) fn refine(
     points: PointsRef<'_>,
     params: &[f64],
     opts: &ToleranceOptions,
     progress: &Progress<'_>,
     start: &[f64],
-) -> Result<(BSplineCurve, Vec<f64>)> {
+) -> Result<(BSplineCurve, Vec<f64>, Vec<f64>)> {
     let (tol, p) = (opts.tol, opts.degree);
     let data = FitData::new(points, params)?;
     let (a, b) = (params[0], params[params.len() - 1]);
@@ -198,7 +197,7 @@ pub(super) fn refine(
         }
     }
     progress.step("tolerance fit (knot removal)", to_try, to_try)?;
-    Ok((curve, tracked.dev))
+    Ok((curve, tracked.dev, tracked.feet))
 }
 
 pub(super) fn clamped(a: f64, b: f64, p: usize, interior: &[f64]) -> KnotVector {
