@@ -14,7 +14,7 @@
 //! | points, knots, bases ([`basis`]) | [`Points`], [`KnotVector`], [`basis`] | doc 000 eq. 2–4, 8; document 002, B-splines; doc 003 Thm 4.5 |
 //! | curves ([`curve`]) | [`BezierCurve`], [`BSplineCurve`], [`NurbsCurve`] (exact circles and arcs) | document 002, Bezier curves and B-splines; P&T ch. 2–5, 7 |
 //! | surfaces ([`surface`]) | [`BezierSurface`], [`BSplineSurface`], [`NurbsSurface`] | P&T ch. 3–4 |
-//! | tensor products in N parameters ([`tensor`]) | [`TensorBSpline`], [`TensorNurbs`], [`Tensor`] (either kind), [`TensorInterpolation`], [`tensor_grid_least_squares`], [`tensor_grid_smoothing`], [`tensor_scattered_least_squares`], [`tensor_scattered_smoothing`] | P&T §3.4, §4.4; `docs/theory/tensor.md` |
+//! | tensor products in N parameters ([`tensor`]) | [`TensorBSpline`], [`TensorNurbs`], [`Tensor`] (either kind), [`TensorInterpolation`], [`tensor_grid_least_squares`], [`tensor_grid_smoothing`], [`tensor_grid_smoothing_spline`], [`tensor_scattered_least_squares`], [`tensor_scattered_smoothing`] | P&T §3.4, §4.4; `docs/theory/tensor.md` |
 //! | interpolation ([`interpolate`]) | [`CurveInterpolation`], [`SurfaceInterpolation`], [`natural_cubic_spline`], [`CubicHermite`] | doc 000; document 002, four-point cubic and Hermite segment |
 //! | Bezier degree change ([`degree`]) | [`BezierCurve::elevate_degree`], [`BezierCurve::change_degree`], [`BezierCurve::real_degree`], [`ElevationPlan`] | doc 004 |
 //! | blending ([`blend`]) | [`JumpPolynomial`], [`Deformation`], [`BlendSpline`], [`CornerTransition`], [`smooth_polyline_corners`] | doc 001 |
@@ -107,11 +107,13 @@ pub use interpolate::{
 pub mod tensor;
 
 pub use tensor::{
-    tensor_grid_least_squares, tensor_grid_smoothing, tensor_grid_smoothing_with_progress,
-    tensor_scattered_least_squares, tensor_scattered_least_squares_with,
-    tensor_scattered_penalized_least_squares, tensor_scattered_smoothing,
-    tensor_scattered_smoothing_with_progress, KnotLimit, RankDeficiency, ScatteredSmoothingOptions,
-    Tensor, TensorBSpline, TensorBSplineRef, TensorGridSmoothing, TensorInterpolation, TensorNurbs,
+    tensor_grid_gcv_score, tensor_grid_least_squares, tensor_grid_smoothing,
+    tensor_grid_smoothing_spline, tensor_grid_smoothing_spline_with_progress,
+    tensor_grid_smoothing_with_progress, tensor_scattered_least_squares,
+    tensor_scattered_least_squares_with, tensor_scattered_penalized_least_squares,
+    tensor_scattered_smoothing, tensor_scattered_smoothing_with_progress, KnotLimit,
+    RankDeficiency, ScatteredSmoothingOptions, Tensor, TensorBSpline, TensorBSplineRef,
+    TensorGridSmoothing, TensorGridSmoothingSpline, TensorInterpolation, TensorNurbs,
     TensorScatteredFit, TensorScatteredSmoothing, MAX_TENSOR_DERIVATIVE_TABLE,
 };
 

@@ -89,8 +89,11 @@ pub use shape::{
     constrained_smoothing_spline_with_progress, shape_violations, IntegralCondition,
     PointCondition, Shape, ShapeConstraint, ShapeConstraints, CONDITION_RTOL, SHAPE_RTOL,
 };
+pub(crate) use smoothing::{
+    brent_min, smoothing_system, smoothing_values_and_system, Smoother, SmoothingSystem,
+    GCV_ROUNDING_SHARE,
+};
 pub use smoothing::{gcv_score, smoothing_spline, smoothing_spline_with_progress, Lambda};
-pub(crate) use smoothing::{smoothing_system, smoothing_values_and_system, SmoothingSystem};
 pub use smoothing_condition::{
     smoothing_condition, smoothing_condition_in, smoothing_condition_in_with_progress,
     smoothing_condition_with_progress, smoothing_condition_with_rounds, smoothing_knot_sequence,

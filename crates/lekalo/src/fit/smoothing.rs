@@ -187,28 +187,29 @@ pub fn gcv_score(data: &FitData<'_>, lambda: f64) -> Result<f64> {
 /// is evaluated: `√ε`. Closer to interpolation both vanish and rounding decides the score; above
 /// them each keeps about half its digits (a residual RMS of `√ε` times the data's spread is
 /// eight orders of magnitude above the rounding of the fitted values).
-const GCV_ROUNDING_SHARE: f64 = 1.490_116_119_384_765_6e-8;
+pub(crate) const GCV_ROUNDING_SHARE: f64 = 1.490_116_119_384_765_6e-8;
 
 /// The banded pieces of the problem, assembled once for all λ (also the objective of the
-/// shape-constrained smoothing spline, `super::shape`).
-pub(super) struct Smoother {
+/// shape-constrained smoothing spline, `super::shape`, and the smoother of each direction of
+/// the smoothing spline on a grid, `crate::tensor`).
+pub(crate) struct Smoother {
     /// Number of data points (each point at a repeated parameter counted).
     n: usize,
     dim: usize,
-    pub(super) knots: Vec<f64>,
+    pub(crate) knots: Vec<f64>,
     /// Per data point: the index of its first non-zero B-spline (points at one parameter
     /// share it).
-    first: Vec<usize>,
+    pub(crate) first: Vec<usize>,
     /// Per data point: its parameter `ū_k`.
     params: Vec<f64>,
     /// Per data point: the 4 non-zero basis values.
-    basis: Vec<[f64; 4]>,
+    pub(crate) basis: Vec<[f64; 4]>,
     weights: Vec<f64>,
     /// `Q − center`, flat.
     y: Vec<f64>,
     pub(super) center: Vec<f64>,
-    pub(super) gram: SymBand,
-    pub(super) omega: SymBand,
+    pub(crate) gram: SymBand,
+    pub(crate) omega: SymBand,
     /// `BᵀW(Q − center)`, flat.
     pub(super) rhs: Vec<f64>,
     /// `TSS_w = Σ_k w_k |Q_k − Q̄|²`, `Q̄` the weighted mean: the data's spread, the scale of
@@ -217,7 +218,7 @@ pub(super) struct Smoother {
 }
 
 impl Smoother {
-    pub(super) fn new(data: &FitData<'_>) -> Result<Self> {
+    pub(crate) fn new(data: &FitData<'_>) -> Result<Self> {
         let x = data.params();
         let n = x.len();
         if n < 3 {
@@ -345,14 +346,38 @@ impl Smoother {
 
     /// Coefficients (minus the center) for `λ > 0`, and the factored matrix.
     fn solve(&self, lam: f64) -> Result<(Vec<f64>, SymBand)> {
+        let m = self.factored(lam)?;
+        let mut c = self.rhs.clone();
+        m.solve(&mut c, self.dim);
+        Ok((c, m))
+    }
+
+    /// `BᵀWB + λΩ` for `λ > 0`, factored `UᵀDU`.
+    ///
+    /// # Errors
+    /// [`Error::SingularSystem`] as [`smoothing_spline`] names it.
+    pub(crate) fn factored(&self, lam: f64) -> Result<SymBand> {
         let mut m = self.gram.clone();
         for (a, o) in m.a.iter_mut().zip(&self.omega.a) {
             *a += lam * o;
         }
         m.factor().map_err(|i| self.singular(i, lam))?;
-        let mut c = self.rhs.clone();
-        m.solve(&mut c, self.dim);
-        Ok((c, m))
+        Ok(m)
+    }
+
+    /// `tr A(λ) = tr((BᵀWB + λΩ)⁻¹ BᵀWB)` from the band of the inverse of the factored `m`
+    /// (Hutchinson & de Hoog 1985; `docs/theory/fitting.md#gcv`). O(N).
+    pub(crate) fn trace(&self, m: &SymBand) -> f64 {
+        let inv = m.inverse_band();
+        let w = 4;
+        let mut tr = 0.0;
+        for i in 0..m.n {
+            for k in 0..w {
+                let v = inv[i * w + k] * self.gram.a[i * w + k];
+                tr += if k == 0 { v } else { 2.0 * v };
+            }
+        }
+        tr
     }
 
     /// The refusal of a factorisation that found no positive pivot at coefficient `i`, naming
@@ -425,15 +450,7 @@ impl Smoother {
     fn gcv(&self, lam: f64) -> Result<f64> {
         let (c, m) = self.solve(lam)?;
         let rss = self.rss(&c);
-        let inv = m.inverse_band();
-        let w = 4;
-        let mut tr = 0.0;
-        for i in 0..m.n {
-            for k in 0..w {
-                let v = inv[i * w + k] * self.gram.a[i * w + k];
-                tr += if k == 0 { v } else { 2.0 * v };
-            }
-        }
+        let tr = self.trace(&m);
         let n = self.n as f64;
         // near interpolation the score is 0/0 in rounding: not a candidate
         if n - tr < GCV_ROUNDING_SHARE * n
@@ -460,22 +477,7 @@ impl Smoother {
     /// # Errors
     /// [`Error::SingularSystem`] when no score is finite; [`Error::Cancelled`] from `steps`.
     pub(super) fn minimise_gcv(&self, steps: &Steps<'_, '_>) -> Result<f64> {
-        let tg: f64 = (0..self.gram.n).map(|i| self.gram.a[i * 4]).sum();
-        let to: f64 = (0..self.omega.n).map(|i| self.omega.a[i * 4]).sum();
-        let scale = (tg / to).log10();
-        let wsum: f64 = self.weights.iter().sum();
-        let range = self.knots[self.knots.len() - 1] - self.knots[0];
-        let line = (wsum * range.powi(3)).log10() + 2.0;
-        let lo = scale - 12.0;
-        let hi = if line.is_finite() {
-            line.max(scale + 6.0)
-        } else {
-            scale + 6.0
-        };
-        // a point a decade (the score's minima are decades wide in log λ; Brent refines within
-        // the two decades around the best point); clamped to [2, 400] first, so the cast is exact
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let n_grid = (hi - lo).ceil().clamp(2.0, 400.0) as usize;
+        let (lo, hi, n_grid) = self.gcv_scan();
         // once cancelled, every further score is skipped (+∞) and the error returned at the end
         let stopped = Cell::new(None);
         let f = |z: f64| match steps.tick() {
@@ -510,6 +512,28 @@ impl Smoother {
         let z = brent_min(f, a, b, grid[i], best.0, 1e-7);
         cancelled(&stopped)?;
         Ok(10f64.powf(z))
+    }
+
+    /// The scan of [`Smoother::minimise_gcv`] in `log₁₀ λ`: from `lo` to `hi` in `n_grid`
+    /// steps, a point a decade (the score's minima are decades wide in log λ; Brent refines
+    /// within the two decades around the best point).
+    pub(crate) fn gcv_scan(&self) -> (f64, f64, usize) {
+        let tg: f64 = (0..self.gram.n).map(|i| self.gram.a[i * 4]).sum();
+        let to: f64 = (0..self.omega.n).map(|i| self.omega.a[i * 4]).sum();
+        let scale = (tg / to).log10();
+        let wsum: f64 = self.weights.iter().sum();
+        let range = self.knots[self.knots.len() - 1] - self.knots[0];
+        let line = (wsum * range.powi(3)).log10() + 2.0;
+        let lo = scale - 12.0;
+        let hi = if line.is_finite() {
+            line.max(scale + 6.0)
+        } else {
+            scale + 6.0
+        };
+        // clamped to [2, 400] first, so the cast is exact
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let n_grid = (hi - lo).ceil().clamp(2.0, 400.0) as usize;
+        (lo, hi, n_grid)
     }
 
     fn curve(&self, c: &[f64]) -> BSplineCurve {

@@ -35,6 +35,10 @@
 //! - `grid_smoothing.rs`: [`tensor_grid_smoothing`], the fewest knots whose residual on a grid
 //!   is at most `s` (FITPACK `regrid` in `N` directions), one banded sweep per direction a
 //!   solve.
+//! - `grid_penalized.rs`: [`tensor_grid_smoothing_spline`], the smoothing spline on a grid
+//!   with a penalty weight per direction, given or chosen by GCV ([`tensor_grid_gcv_score`]):
+//!   the separable (sandwich) smoother, one sweep of the curve's banded smoothing solves per
+//!   direction.
 //! - `integral.rs`: [`TensorBSpline::integral`], the integral over a box.
 //! - `scattered.rs`: [`tensor_scattered_least_squares`], least squares on scattered points in
 //!   `N` variables by banded normal equations, and [`tensor_scattered_least_squares_with`], the
@@ -57,6 +61,7 @@ mod eval;
 mod fit;
 mod fixed;
 mod grid_eval;
+mod grid_penalized;
 mod grid_smoothing;
 mod integral;
 mod interpolate;
@@ -73,6 +78,11 @@ mod view;
 pub use any::Tensor;
 pub use design_matrix::{tensor_design_matrix, TensorDesignMatrix};
 pub use fit::tensor_grid_least_squares;
+pub use grid_penalized::{
+    tensor_grid_gcv_score, tensor_grid_smoothing_spline,
+    tensor_grid_smoothing_spline_with_progress, TensorGridSmoothingSpline, GCV_CYCLE_TOL,
+    GCV_MAX_CYCLES,
+};
 pub use grid_smoothing::{
     tensor_grid_smoothing, tensor_grid_smoothing_with_progress, TensorGridSmoothing,
 };
