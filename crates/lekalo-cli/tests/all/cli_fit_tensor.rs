@@ -382,3 +382,136 @@ fn s_smooths_scattered_data_with_surfit_knots() {
         .code(2)
         .stderr(contains("--s places the knots").and(contains("surfit")));
 }
+
+/// `f(x, y, z)` on the uniform grid of `[0, 1]³` with 8 × 7 × 6 nodes, one value a row, the
+/// first direction slowest.
+fn grid_of(dir: &Path, name: &str, f: impl Fn(f64, f64, f64, usize) -> f64) -> PathBuf {
+    let mut s = String::new();
+    let mut k = 0;
+    for i in 0..8 {
+        for j in 0..7 {
+            for l in 0..6 {
+                let (x, y, z) = (f64::from(i) / 7.0, f64::from(j) / 6.0, f64::from(l) / 5.0);
+                s.push_str(&format!("{:?}\n", f(x, y, z, k)));
+                k += 1;
+            }
+        }
+    }
+    let path = dir.join(name);
+    fs::write(&path, s).unwrap();
+    path
+}
+
+fn fit_json(args: &[&str], file: &Path) -> serde_json::Value {
+    let out = lekalo()
+        .arg("fit")
+        .arg(file)
+        .args(args)
+        .arg("--json")
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    serde_json::from_slice(&out).unwrap()
+}
+
+/// `--smooth` on a grid: the smoothing spline with one λ per direction (or GCV) reproduces
+/// data linear in each variable for any λ, reports the weights it used, and chooses them by
+/// GCV on noisy data; a surface grid (two sizes) takes it too.
+#[test]
+fn smoothing_spline_on_a_grid_takes_one_weight_per_direction_or_gcv() {
+    let d = tempfile::tempdir().unwrap();
+    let f = |x: f64, y: f64, z: f64| 100.0 + x * y - 2.0 * z + 3.0 * x * y * z;
+    let exact = grid_of(d.path(), "exact.csv", |x, y, z, _| f(x, y, z));
+    let j = fit_json(
+        &[
+            "--grid", "8x7x6", "--param", "uniform", "--smooth", "0.1,1,0",
+        ],
+        &exact,
+    );
+    assert_eq!(j["report"]["lambda"], serde_json::json!([0.1, 1.0, 0.0]));
+    assert_eq!(j["object"]["shape"], serde_json::json!([10, 9, 8]));
+    assert!(j["report"]["max_residual"].as_f64().unwrap() < 1e-11);
+    let spline = d.path().join("exact.json");
+    fs::write(&spline, j["object"].to_string()).unwrap();
+    let at = d.path().join("at.csv");
+    fs::write(&at, "0.3,0.8,0.55\n0.91,0.12,0.4\n").unwrap();
+    for (v, p) in sample(&spline, &at)
+        .iter()
+        .zip([[0.3, 0.8, 0.55], [0.91, 0.12, 0.4]])
+    {
+        assert!((v - f(p[0], p[1], p[2])).abs() < 1e-11, "{v} at {p:?}");
+    }
+    // noisy data: GCV in every direction
+    let noisy = grid_of(d.path(), "noisy.csv", |x, y, z, k| {
+        (3.0 * x).sin() * y + z + 0.05 * (((k * 7919) % 13) as f64 / 6.0 - 1.0)
+    });
+    let j = fit_json(&["--grid", "8x7x6", "--smooth", "gcv"], &noisy);
+    let lambda: Vec<f64> = j["report"]["lambda"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert_eq!(lambda.len(), 3);
+    assert!(lambda.iter().all(|&l| l > 0.0), "{lambda:?}");
+    let trace = j["report"]["trace"].as_f64().unwrap();
+    assert!(trace > 1.0 && trace < 336.0, "{trace}");
+    assert!(j["report"]["gcv"].as_f64().unwrap() > 0.0);
+    // a surface grid, one weight given and one chosen
+    let mut s = String::new();
+    for i in 0..12 {
+        for j in 0..9 {
+            s.push_str(&format!(
+                "{:?}\n",
+                f64::from(i * j).sqrt() + f64::from((i + 2 * j) % 3) * 0.1
+            ));
+        }
+    }
+    let surface = d.path().join("surface.csv");
+    fs::write(&surface, s).unwrap();
+    let j = fit_json(&["--grid", "12x9", "--smooth", "1e-3,gcv"], &surface);
+    assert_eq!(j["report"]["lambda"][0], 1e-3);
+    assert!(j["report"]["lambda"][1].as_f64().unwrap() > 0.0);
+    assert_eq!(j["object"]["shape"], serde_json::json!([14, 11]));
+}
+
+#[test]
+fn smoothing_spline_on_a_grid_refuses_what_it_does_not_take() {
+    let d = tempfile::tempdir().unwrap();
+    let v = grid_of(d.path(), "v.csv", |x, y, z, _| x + y * z);
+    for (extra, says) in [
+        (
+            &["--smooth", "1,2"][..],
+            "2 weights for a grid of 3 directions",
+        ),
+        (&["--smooth", "often"][..], "neither a number nor gcv"),
+        (&["--smooth", "-1"][..], "λ"),
+        (
+            &["--smooth", "1", "--ctrl-grid", "4x4x4"][..],
+            "--ctrl-grid",
+        ),
+        (&["--smooth", "1", "--degree", "2"][..], "--degree"),
+        (&["--smooth", "1", "--bbox", "0:1,0:1,0:1"][..], "--bbox"),
+    ] {
+        lekalo()
+            .arg("fit")
+            .arg(&v)
+            .args(["--grid", "8x7x6"])
+            .args(extra)
+            .assert()
+            .code(2)
+            .stderr(contains(says));
+    }
+    // a curve takes one weight
+    let xy = d.path().join("xy.csv");
+    fs::write(&xy, "0,0\n1,1\n2,0\n3,1\n4,0\n").unwrap();
+    lekalo()
+        .arg("fit")
+        .arg(&xy)
+        .args(["--function", "--smooth", "1,2"])
+        .assert()
+        .code(2)
+        .stderr(contains("a curve takes one λ"));
+}

@@ -303,3 +303,67 @@ fn end_conditions_and_knot_placement_apply_to_every_direction() {
         .code(2)
         .stderr(contains("drop"));
 }
+
+/// A surface grid (two sizes) takes `--end` and `--knots` as grids in more directions do: the
+/// tensor interpolation of two directions, written as a surface. Averaged knots with free ends
+/// are the surface interpolation's own, bit for bit.
+#[test]
+fn a_surface_grid_takes_end_conditions_and_knot_placements() {
+    let d = tempfile::tempdir().unwrap();
+    let pts = d.path().join("grid.csv");
+    let mut s = String::new();
+    for i in 0..6 {
+        for j in 0..5 {
+            let (x, y) = (f64::from(i), f64::from(j * j) / 4.0);
+            s.push_str(&format!("{x},{y},{}\n", (0.7 * x).sin() * (0.5 * y).cos()));
+        }
+    }
+    fs::write(&pts, s).unwrap();
+    let run = |extra: &[&str]| -> serde_json::Value {
+        let out = lekalo()
+            .arg("interpolate")
+            .arg(&pts)
+            .args(["--grid", "6x5", "--degree", "3"])
+            .args(extra)
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        serde_json::from_slice(&out).unwrap()
+    };
+    let plain = run(&[]);
+    assert_eq!(plain, run(&["--knots", "averaged"]));
+    let natural = run(&["--end", "natural"]);
+    assert_eq!(natural["type"], "bspline_surface");
+    assert_ne!(natural["control"], plain["control"]);
+    // still through the grid's corners (clamped in both directions)
+    let last = natural["control"]
+        .as_array()
+        .unwrap()
+        .last()
+        .unwrap()
+        .clone();
+    assert!((last[0].as_f64().unwrap() - 5.0).abs() < 1e-12, "{last}");
+    assert!((last[1].as_f64().unwrap() - 4.0).abs() < 1e-12, "{last}");
+    let uniform = run(&["--knots", "uniform", "--end", "natural"]);
+    let ku: Vec<f64> = uniform["knots_u"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert!(
+        (ku[4] - 1.0 / 3.0).abs() < 1e-15 && (ku[5] - 2.0 / 3.0).abs() < 1e-15,
+        "{ku:?}"
+    );
+    let periodic = run(&["--end", "periodic"]);
+    assert_eq!(periodic["type"], "bspline_surface");
+    lekalo()
+        .arg("interpolate")
+        .arg(&pts)
+        .args(["--grid", "6x5", "--end", "periodic", "--knots-u", "0.5"])
+        .assert()
+        .code(2)
+        .stderr(contains("drop"));
+}

@@ -584,7 +584,7 @@ fn ignored_options_are_refused_naming_both() {
         ("t.json", LECTURE),
     ]);
     let cases: [(&[&str], &[&str]); 6] = [
-        (&["--grid", "2x3", "--end", "natural"], &["--grid", "--end"]),
+        (&["--grid", "2x3", "--end", "second"], &["--grid", "--end"]),
         (
             &["--grid", "2x3", "--hermite", "cardinal"],
             &["--grid", "--hermite"],

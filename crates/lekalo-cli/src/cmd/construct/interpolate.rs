@@ -45,8 +45,8 @@ knot placement and end condition. Surfaces (§5): --grid ROWSxCOLS reads the poi
 Grids in 3 or more directions (--grid AxBxC): one row of values per node, the first direction
 slowest (or a .npy array of shape (A, B, C[, d])), a spline in as many parameters; --degree
 takes one degree or one per direction; their parameters are equally spaced unless --param
-says otherwise; --knots and --end (free, natural, periodic: the first line not repeated) apply
-to every direction. A grid's parameters in a direction (the axis of a lookup table): --params-u,
+says otherwise. --knots and --end (free, natural, periodic: the first line not repeated) apply
+to every direction of every grid, surfaces included. A grid's parameters in a direction (the axis of a lookup table): --params-u,
 --params-v (directions 1, 2) or --params-in K=LIST|FILE (direction K); the other directions'
 from --param, averaged over the grid's lines. A grid's knots in a direction: its interior
 knots (values − degree − 1, inside the parameters' range) by --knots-u, --knots-v or
@@ -63,6 +63,7 @@ Examples:
   lekalo interpolate pts.csv --end natural -o natural.step
   lekalo interpolate pts.csv --end periodic --degree 3
   lekalo interpolate grid.csv --grid 4x3 --degree 3 --degree-v 2 -o surface.obj
+  lekalo interpolate grid.csv --grid 4x3 --degree 2 --end natural --knots uniform -o natural.json
   lekalo interpolate values.csv --grid 6x5x4 --degree 3,3,1 --param uniform -o tensor.json
   lekalo interpolate values.csv --grid 6x5x4 --degree 3,3,2 --param uniform --knots-u 0.4,0.6 --knots-in 3=0.5
   lekalo interpolate values.csv --grid 6x5x4 --params-u 0,1,2,4,8,16 --params-in 3=-1,0,1,3 -o table.json
@@ -104,8 +105,8 @@ pub(crate) struct InterpolateArgs {
     dn: Option<String>,
     /// Interpolate a grid of points (rows x columns, e.g. 4x3) by a surface; with three or
     /// more sizes (e.g. 5x4x3), a grid of values by a tensor-product spline in as many
-    /// parameters (rows: the first direction slowest), whose --end and --knots apply to every
-    /// direction.
+    /// parameters (rows: the first direction slowest); --end and --knots apply to every
+    /// direction of either.
     #[arg(
         long,
         value_name = "ROWSxCOLS[x…]",
@@ -290,29 +291,37 @@ fn interpolate(a: &InterpolateArgs, cx: &Context) -> Result<()> {
         );
     }
     if let Some(g) = &a.grid {
-        if a.end != EndKind::Free || a.knots != KnotPlacement::Auto {
-            return bad_input(
-                "--end and --knots are for curves and for grids in 3 or more directions \
-                 (--grid AxBxC); a surface grid takes its knots by --knots-u and --knots-v",
-            );
-        }
         let (nu, nv) = net_size(g, "--grid")?;
         let (degree, listed_v) = match a.degree.as_slice() {
             [p, q] if a.degree_v.is_none() => (*p, Some(*q)),
             _ => (single_degree(a)?, a.degree_v),
         };
         let degree_v = listed_v.unwrap_or(degree.min(nv.saturating_sub(1)).max(1));
-        if grid_knots(a).any() || grid_params(a).any() {
-            // given knots or parameters: the tensor interpolation of two directions, which is
-            // the surface's
-            let mut interp =
-                lekalo::TensorInterpolation::new(vec![degree, degree_v]).parametrization(param);
-            if let Some(limit) = a.max_condition {
-                interp = interp.max_condition(limit);
-            }
+        if a.end != EndKind::Free
+            || a.knots != KnotPlacement::Auto
+            || grid_knots(a).any()
+            || grid_params(a).any()
+        {
+            // end conditions, knot placements, given knots or parameters: the tensor
+            // interpolation of two directions (the surface's own is its free, averaged case)
+            let degrees = [degree, degree_v];
+            let spec = crate::cmd::tensor::GridInterpolation {
+                grid: g,
+                factors: vec![nu, nv],
+                degree: &degrees,
+                param,
+                placement: a.knots,
+                end: a.end,
+                max_condition: a.max_condition,
+                knots: grid_knots(a),
+                params: grid_params(a),
+                output: a.out.output.as_deref(),
+                to: a.out.to.as_deref(),
+            };
+            let interp = crate::cmd::tensor::grid_interpolation(&degrees, &spec)?;
             let s = crate::cmd::tensor::interpolate_given(
                 interp,
-                &[degree, degree_v],
+                &degrees,
                 &pts,
                 (g.as_str(), &[nu, nv]),
                 (grid_knots(a), grid_params(a)),

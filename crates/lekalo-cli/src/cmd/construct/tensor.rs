@@ -282,7 +282,8 @@ pub(crate) fn interpolate_given(
         .interpolate_at(&refs, values.as_view())?)
 }
 
-/// What `interpolate --grid` with three or more factors asks.
+/// What `interpolate --grid` asks (a surface grid's factors too, when it gives `--end`,
+/// `--knots`, or knots or parameters per direction).
 pub(crate) struct GridInterpolation<'a> {
     pub(crate) grid: &'a str,
     pub(crate) factors: Vec<usize>,
@@ -311,31 +312,8 @@ pub(crate) fn interpolate(g: &GridInterpolation<'_>, file: &Path, cx: &Context) 
     }
     let n = g.factors.len();
     let degrees = degrees_for(g.degree, n)?;
-    let end = match g.end {
-        EndKind::Free | EndKind::Natural | EndKind::Periodic => g.end.condition(None, None)?,
-        EndKind::Derivatives | EndKind::Second => {
-            return bad_input(
-                "--end: a grid in 3 or more directions takes free, natural or periodic ends \
-                 (end derivatives would be a grid of values themselves); drop --end or choose \
-                 one of these",
-            )
-        }
-    };
-    let periodic = end == EndCondition::Periodic;
-    if periodic && (g.knots.any() || g.params.any()) {
-        return bad_input(
-            "--end periodic places the knots and parameters of every direction itself; drop \
-             --knots-u/--knots-v/--knots-in and --params-u/--params-v/--params-in",
-        );
-    }
+    let interp = grid_interpolation(&degrees, g)?;
     let values = checked_grid_values(g.grid, &g.factors, file, cx)?;
-    let mut interp = TensorInterpolation::new(degrees.clone())
-        .parametrization(g.param)
-        .knot_placements(vec![g.placement; n])
-        .end_conditions(vec![end; n]);
-    if let Some(limit) = g.max_condition {
-        interp = interp.max_condition(limit);
-    }
     let s = interpolate_given(
         interp,
         &degrees,
@@ -355,6 +333,40 @@ pub(crate) fn interpolate(g: &GridInterpolation<'_>, file: &Path, cx: &Context) 
     let mut inputs = vec![file.to_path_buf()];
     inputs.extend(g.params.files());
     emit(g.output, text.as_bytes(), &inputs, cx)
+}
+
+/// The interpolation of a grid in every number of directions (surfaces included) with the
+/// degrees `degrees` and `g`'s parametrisation, knot placement, end condition (free, natural
+/// or periodic, the same in every direction) and condition limit.
+pub(crate) fn grid_interpolation(
+    degrees: &[usize],
+    g: &GridInterpolation<'_>,
+) -> Result<TensorInterpolation> {
+    let n = degrees.len();
+    let end = match g.end {
+        EndKind::Free | EndKind::Natural | EndKind::Periodic => g.end.condition(None, None)?,
+        EndKind::Derivatives | EndKind::Second => {
+            return bad_input(
+                "--end: a grid (--grid) takes free, natural or periodic ends (end derivatives would be \
+                 a grid of values themselves); drop --end or choose one of these",
+            )
+        }
+    };
+    let periodic = end == EndCondition::Periodic;
+    if periodic && (g.knots.any() || g.params.any()) {
+        return bad_input(
+            "--end periodic places the knots and parameters of every direction itself; drop \
+             --knots-u/--knots-v/--knots-in and --params-u/--params-v/--params-in",
+        );
+    }
+    let mut interp = TensorInterpolation::new(degrees.to_vec())
+        .parametrization(g.param)
+        .knot_placements(vec![g.placement; n])
+        .end_conditions(vec![end; n]);
+    if let Some(limit) = g.max_condition {
+        interp = interp.max_condition(limit);
+    }
+    Ok(interp)
 }
 
 /// The values of the grid `grid` (`factors`) in `file`, their count checked against the grid's

@@ -31,7 +31,8 @@ pub(crate) enum Robust {
 Modes (one of them; least squares by default):
   --lsq              least squares with --ctrl N control points or --knots (interior knots);
                      --domain A:B sets the end knots (a curve reaching beyond the data)
-  --smooth LAMBDA    cubic smoothing spline, λ given, or `--smooth gcv` (cross-validation)
+  --smooth LAMBDA    cubic smoothing spline, λ given, or `--smooth gcv` (cross-validation);
+                     on a grid (--grid AxB…) one per direction, e.g. --smooth 0.1,gcv
   --s S              fewest knots with weighted residual sum of squares <= S (like splrep);
                      with --knots, the least k-th derivative jumps on those knots with RSS = S;
                      --domain A:B sets the end knots
@@ -91,6 +92,8 @@ Examples:
   lekalo fit values.csv --grid 6x5x4 --degree 2 --param uniform --ctrl-grid 4x4x3 -o fitted.json
   lekalo fit values.csv --grid 6x5x4 --degree 2,2,1 --param uniform --knots-in 3=0.5 --ctrl-grid 4x4x3
   lekalo fit xyzw.csv --scattered --ctrl-grid 4x4x4 --degree 2 --bbox 0:1,0:1,0:1 --json
+  lekalo fit values.csv --grid 6x5x4 --param uniform --smooth gcv --json
+  lekalo fit grid.csv --grid 30x20 --smooth 1e-3,gcv -o smooth.json
   lekalo fit tpr.csv --sphere --scattered --s 0.5 -o sphere.json
   lekalo fit tpr.csv --sphere --scattered --knots-u 1,2 --knots-v 1.5,3,4.5 --json
   lekalo fit r.csv --sphere --grid 7x10 --params-u 0.4,0.8,1.2,1.6,2,2.4,2.8 \
@@ -101,8 +104,9 @@ pub(crate) struct FitArgs {
     /// Least squares with given control-point count or knots (the default mode).
     #[arg(long)]
     pub(super) lsq: bool,
-    /// Penalised smoothing: λ ≥ 0, or `gcv`.
-    #[arg(long, value_name = "LAMBDA|gcv", allow_hyphen_values = true)]
+    /// Penalised smoothing: λ ≥ 0, or `gcv`; on a grid one for all directions or one per
+    /// direction (`0.1,gcv`).
+    #[arg(long, value_name = "LAMBDA|gcv[,...]", allow_hyphen_values = true)]
     pub(crate) smooth: Option<String>,
     /// Smoothing condition: the weighted residual sum of squares target.
     #[arg(long, value_name = "S", allow_hyphen_values = true)]
@@ -449,6 +453,27 @@ impl FitArgs {
         }
         Ok(())
     }
+}
+
+/// The penalty weights of `--smooth`: `λ ≥ 0` or `gcv` (generalised cross-validation), one
+/// for a curve, or one per direction of a grid, comma separated (one value for all of them).
+pub(super) fn smoothing_weights(text: &str) -> Result<Vec<lekalo::fit::Lambda>> {
+    text.split(',')
+        .map(|w| {
+            let w = w.trim();
+            if w.eq_ignore_ascii_case("gcv") {
+                Ok(lekalo::fit::Lambda::Gcv)
+            } else {
+                match w.parse::<f64>() {
+                    Ok(l) => Ok(lekalo::fit::Lambda::Given(l)),
+                    Err(_) => bad_input(format!(
+                        "--smooth: \"{w}\" is neither a number nor gcv (give λ ≥ 0 or gcv; on a \
+                         grid one per direction, e.g. --smooth 0.1,gcv)"
+                    )),
+                }
+            }
+        })
+        .collect()
 }
 
 /// `A:B` with `A < B` (the value of `option`; `example` shows the spelling in the message).

@@ -7,8 +7,8 @@ use lekalo::fit::{
     constrained_least_squares, constrained_smoothing_condition, constrained_smoothing_spline,
     fit_tolerance_with_progress, least_squares_with_progress, place_knots, robust_least_squares,
     smoothing_condition_with_rounds, smoothing_on_knots_with_progress,
-    smoothing_spline_with_progress, CurveFit, Deviation, EndConstraints, FitData, Lambda,
-    RobustLoss, ToleranceOptions,
+    smoothing_spline_with_progress, CurveFit, Deviation, EndConstraints, FitData, RobustLoss,
+    ToleranceOptions,
 };
 use lekalo::{parametrize, KnotVector, Points};
 use lekalo_io::Object;
@@ -149,14 +149,13 @@ fn fit_curve(
             .collect::<Vec<_>>());
     }
     let fit: CurveFit = if let Some(sm) = &a.smooth {
-        let lambda = if sm.eq_ignore_ascii_case("gcv") {
-            Lambda::Gcv
-        } else {
-            match sm.parse::<f64>() {
-                Ok(l) => Lambda::Given(l),
-                Err(_) => {
-                    return bad_input(format!("--smooth: \"{sm}\" is neither a number nor gcv"))
-                }
+        let lambda = match super::args::smoothing_weights(sm)?[..] {
+            [l] => l,
+            _ => {
+                return bad_input(format!(
+                    "--smooth: \"{sm}\" gives several weights; a curve takes one λ ≥ 0 or gcv \
+                     (one per direction is for grids, --grid AxB…)"
+                ))
             }
         };
         if shape.is_empty() {

@@ -1,7 +1,9 @@
 //! `lekalo fit --grid AxBxC…` and `--scattered` in three or more variables: least squares of a
 //! tensor-product spline with given knots (or control-point counts) per direction, written as
-//! `interpolate --grid` writes splines in `N` parameters. Parsing and presentation only; the
+//! `interpolate --grid` writes splines in `N` parameters, and `--grid AxB… --smooth` (two
+//! directions or more), the smoothing spline on a grid. Parsing and presentation only; the
 //! fits are the library's ([`lekalo::tensor_grid_least_squares`],
+//! [`lekalo::tensor_grid_smoothing_spline`],
 //! [`lekalo::tensor_scattered_penalized_least_squares`]).
 
 use std::cmp::Ordering;
@@ -10,13 +12,14 @@ use std::path::PathBuf;
 use anyhow::Result;
 use lekalo::fit::{check_schoenberg_whitney, place_knots};
 use lekalo::{
-    tensor_grid_least_squares, tensor_grid_smoothing, tensor_scattered_penalized_least_squares,
-    tensor_scattered_smoothing, KnotLimit, KnotVector, PointsRef, RankDeficiency,
-    ScatteredSmoothingOptions, Tensor, TensorBSpline, TensorInterpolation,
+    tensor_grid_least_squares, tensor_grid_smoothing, tensor_grid_smoothing_spline,
+    tensor_scattered_penalized_least_squares, tensor_scattered_smoothing, KnotLimit, KnotVector,
+    PointsRef, RankDeficiency, ScatteredSmoothingOptions, Tensor, TensorBSpline,
+    TensorGridSmoothingSpline, TensorInterpolation,
 };
 use serde_json::{json, Value};
 
-use super::args::{clamped, span, with_ends, FitArgs};
+use super::args::{clamped, smoothing_weights, span, with_ends, FitArgs};
 use crate::cmd::tensor::{
     checked_grid_values, degrees_for, direction_of, given_knots, given_parameters, grid_factors,
     grid_parameters, Given,
@@ -26,11 +29,15 @@ use crate::exit::{bad_input, BadInput};
 use crate::output::{emit, format_of};
 
 /// The number of variables of a tensor fit (three or more, or any number for `--scattered
-/// --s`), or `None` for curves and surfaces: the factors of `--grid`; for `--scattered`, the
+/// --s` and `--grid --smooth`), or `None` for curves and surfaces: the factors of `--grid`; for `--scattered`, the
 /// factors of `--ctrl-grid`, or else the last direction whose knots are given; for
 /// `--scattered --s` without knots, the entries of `--degree` (two or more), or else the
 /// intervals of `--bbox`, or else 2.
 pub(super) fn variables(a: &FitArgs) -> Result<Option<usize>> {
+    if let (Some(g), Some(_)) = (&a.grid, &a.smooth) {
+        // the smoothing spline on a grid, surfaces included (lekalo::tensor_grid_smoothing_spline)
+        return Ok(Some(grid_factors(g)?.len()));
+    }
     let per_direction = !a.knots_in.is_empty() || !a.params_in.is_empty();
     let knots_given = a.ctrl_grid.is_some()
         || a.knots_u.is_some()
@@ -120,7 +127,7 @@ pub(super) fn run(a: &FitArgs, n: usize, cx: &Context) -> Result<()> {
                  surfit on scattered data): drop --ctrl-grid and --knots-u/--knots-v/--knots-in",
             );
         }
-    } else {
+    } else if a.smooth.is_none() {
         for d in &dirs {
             d.check_given()?;
         }
@@ -245,7 +252,14 @@ fn run_grid(a: &FitArgs, dirs: &[Direction], inputs: &[PathBuf], cx: &Context) -
     let interp = TensorInterpolation::new(degrees.clone()).parametrization(a.grid_param());
     let params = grid_parameters(&interp, given, &values, &shape)?;
     let refs: Vec<&[f64]> = params.iter().map(Vec::as_slice).collect();
-    let (s, net) = if let Some(target) = a.s {
+    let mut extra = None;
+    let (s, net) = if let Some(sm) = &a.smooth {
+        let f = smoothing_spline_on_grid(a, dirs, sm, &refs, &values)?;
+        extra =
+            Some(json!({ "lambda": f.lambdas, "gcv": finite_or_null(f.gcv), "trace": f.trace }));
+        let net = f.spline.shape().to_vec();
+        (f.spline, net)
+    } else if let Some(target) = a.s {
         // the fewest knots whose residual is at most S (lekalo::tensor_grid_smoothing)
         let bbox = dirs
             .iter()
@@ -278,7 +292,58 @@ fn run_grid(a: &FitArgs, dirs: &[Direction], inputs: &[PathBuf], cx: &Context) -
         })
         .collect();
     let rss = residuals.iter().map(|r| r * r).sum::<f64>();
-    finish(a, &s, &net, &residuals, rss, inputs, cx)
+    finish_with(a, &s, &net, &residuals, rss, extra, inputs, cx)
+}
+
+/// `--smooth` on a grid: the cubic smoothing spline with a knot at every grid line and the
+/// weights λ given or chosen by GCV (`lekalo::tensor_grid_smoothing_spline`).
+fn smoothing_spline_on_grid(
+    a: &FitArgs,
+    dirs: &[Direction],
+    sm: &str,
+    refs: &[&[f64]],
+    values: &lekalo::Points,
+) -> Result<TensorGridSmoothingSpline> {
+    let n = dirs.len();
+    if a.ctrl_grid.is_some() || dirs.iter().any(|d| d.inner.is_some() || d.range.is_some()) {
+        return bad_input(
+            "--smooth on a grid fits the cubic smoothing spline with a knot at every grid line: \
+             drop --ctrl-grid, --bbox and --knots-u/--knots-v/--knots-in",
+        );
+    }
+    if let Some(d) = dirs.iter().find(|d| d.degree != 3) {
+        return bad_input(format!(
+            "--degree: --smooth on a grid fits cubic splines (the smoothing spline of each \
+             direction), not degree {} in direction {}; drop --degree",
+            d.degree, d.k
+        ));
+    }
+    let weights = smoothing_weights(sm)?;
+    let lambdas = match weights.len() {
+        1 => vec![weights[0]; n],
+        k if k == n => weights,
+        k => {
+            return bad_input(format!(
+                "--smooth: {k} weights for a grid of {n} directions; give one for all, or one \
+                 per direction (e.g. --smooth {})",
+                vec!["gcv"; n].join(",")
+            ))
+        }
+    };
+    Ok(tensor_grid_smoothing_spline(
+        refs,
+        values.as_view(),
+        &lambdas,
+    )?)
+}
+
+/// A JSON number, or `null` for `±∞` and NaN (a GCV score within rounding of `0/0`).
+fn finite_or_null(v: f64) -> Value {
+    if v.is_finite() {
+        json!(v)
+    } else {
+        Value::Null
+    }
 }
 
 /// Least squares on the grid with the knots (or control-point counts) of each direction.
@@ -544,20 +609,8 @@ fn smooth_scattered(
     )
 }
 
-/// Writes the fitted spline (or `{"object", "report"}` with `--json`) and its report.
-fn finish(
-    a: &FitArgs,
-    s: &TensorBSpline,
-    net: &[usize],
-    residuals: &[f64],
-    weighted_rss: f64,
-    inputs: &[PathBuf],
-    cx: &Context,
-) -> Result<()> {
-    finish_with(a, s, net, residuals, weighted_rss, None, inputs, cx)
-}
-
-/// [`finish`] with `extra` fields in the report.
+/// Writes the fitted spline (or `{"object", "report"}` with `--json`) and its report, with
+/// `extra` fields in the report.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn finish_with(
     a: &FitArgs,
@@ -618,7 +671,8 @@ fn refuse_curve_options(a: &FitArgs) -> Result<()> {
     let s_of_a_curve = a.s.is_some() && a.grid.is_none() && !a.scattered;
     let given: Vec<&str> = std::iter::once((s_of_a_curve, "--s"))
         .chain(a.curve_options())
-        .filter(|(on, _)| *on)
+        // a grid is smoothed by --smooth (tensor_grid_smoothing_spline)
+        .filter(|&(on, name)| on && !(name == "--smooth" && a.grid.is_some()))
         .map(|(_, name)| name)
         .collect();
     if given.is_empty() {
