@@ -382,6 +382,12 @@ impl<'a> PointsRef<'a> {
         Ok(PointsRef { data, dim })
     }
 
+    /// A view of values of dimension 1 whose finiteness the caller checks where it reads them
+    /// (naming the argument they were given as), so that they are not read twice.
+    pub(crate) fn values(data: &'a [f64]) -> Self {
+        PointsRef { data, dim: 1 }
+    }
+
     /// A view of flat point-major data: [`PointsRef::from_flat`] with the arguments the other
     /// way round.
     ///

@@ -127,7 +127,8 @@ pub fn akima_slopes_into(x: &[f64], y: &[f64], modified: bool, slopes: &mut [f64
             got: slopes.len(),
         });
     }
-    let data = PointsRef::from_flat(1, y)?;
+    // `y` is checked where it is read (a number that is not finite named as `y`)
+    let data = PointsRef::values(y);
     if n < 3 || y.len() != n {
         let d = akima_slopes(x, data, modified)?;
         slopes.copy_from_slice(d.as_slice());

@@ -96,7 +96,8 @@ pub fn pchip_slopes_into(x: &[f64], y: &[f64], slopes: &mut [f64]) -> Result<()>
             got: slopes.len(),
         });
     }
-    let data = PointsRef::from_flat(1, y)?;
+    // `y` is checked where it is read (a number that is not finite named as `y`)
+    let data = PointsRef::values(y);
     if n < 3 || y.len() != n {
         let d = pchip_slopes(x, data)?;
         slopes.copy_from_slice(d.as_slice());
@@ -116,6 +117,8 @@ pub fn pchip_slopes_into(x: &[f64], y: &[f64], slopes: &mut [f64]) -> Result<()>
     if ok && slopes[0].is_finite() && slopes[n - 1].is_finite() {
         return Ok(());
     }
+    // a value that is not finite, named as `y`; else a slope that overflowed
+    check_function_data(x, data)?;
     check_finite("PCHIP slopes (overflow: rescale the data)", slopes)
 }
 
@@ -339,5 +342,28 @@ mod tests {
         )
         .unwrap();
         assert!((d.as_slice()[1] - 2.0 * 3.0 / 4.0).abs() < 1e-15);
+    }
+
+    /// A value that is not finite is named as `y` by the slopes written in place, wherever it
+    /// lies (the ends included), as by the slopes of any dimension.
+    #[test]
+    fn a_value_that_is_not_finite_is_named_as_y() {
+        let x = [0.0, 1.0, 2.0, 3.0, 4.0];
+        for at in 0..5 {
+            for bad in [f64::NAN, f64::INFINITY] {
+                let mut y = [0.0, 1.0, 0.5, 2.0, 1.0];
+                y[at] = bad;
+                let mut d = [0.0; 5];
+                let e = pchip_slopes_into(&x, &y, &mut d).unwrap_err();
+                assert!(
+                    matches!(&e, Error::NonFinite { index, .. } if *index == at)
+                        && e.to_string().starts_with(&format!("y[{at}]")),
+                    "{e}"
+                );
+                let e =
+                    crate::interpolate::akima_slopes_into(&x, &y, at % 2 == 0, &mut d).unwrap_err();
+                assert!(e.to_string().starts_with(&format!("y[{at}]")), "{e}");
+            }
+        }
     }
 }
