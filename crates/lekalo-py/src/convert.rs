@@ -45,7 +45,7 @@ impl FloatArray<'_> {
 
     /// The array as points: the last axis is the dimension (`(n, d)`), a 1-D array is `n`
     /// points of dimension 1.
-    pub(crate) fn points(&self, what: &str) -> PyResult<PointsRef<'_>> {
+    pub(crate) fn points(&self, what: &'static str) -> PyResult<PointsRef<'_>> {
         let dim = match self.shape.len() {
             1 => 1,
             2 => self.shape[1],
@@ -58,13 +58,27 @@ impl FloatArray<'_> {
         if dim == 0 {
             return Err(bad(format!("{what}: the dimension (last axis) is 0")));
         }
-        PointsRef::from_flat(dim, self.data()).map_err(lib_err)
+        PointsRef::from_flat(dim, self.data())
+            .map_err(|e| match e {
+                // the number named by the argument it was given as, not the library's view of it
+                lekalo::Error::NonFinite { index, value, .. } => lekalo::Error::NonFinite {
+                    what: what.into(),
+                    index,
+                    value,
+                },
+                e => e,
+            })
+            .map_err(lib_err)
     }
 
     /// [`FloatArray::points`] of a curve's data, which needs at least `needed` points: an array
     /// of fewer rows than that but enough columns, with at most 3 rows, is SciPy's list of
     /// coordinate arrays (`[x, y]`, shape `(dim, n)`), refused with the call that reads it.
-    pub(crate) fn curve_points(&self, what: &str, needed: usize) -> PyResult<PointsRef<'_>> {
+    pub(crate) fn curve_points(
+        &self,
+        what: &'static str,
+        needed: usize,
+    ) -> PyResult<PointsRef<'_>> {
         if let [rows, cols] = self.shape[..] {
             if rows < needed && cols >= needed && rows <= 3 {
                 return Err(bad(format!(
@@ -245,7 +259,7 @@ fn c_order_copy(a: &PyReadonlyArrayDyn<'_, f64>, what: &str) -> PyResult<Vec<f64
 }
 
 /// Reads points `(n, d)` (or `(n,)` for dimension 1) into owned [`Points`].
-pub(crate) fn owned_points(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Points> {
+pub(crate) fn owned_points(obj: &Bound<'_, PyAny>, what: &'static str) -> PyResult<Points> {
     let a = floats(obj, what)?;
     Ok(a.points(what)?.to_owned())
 }

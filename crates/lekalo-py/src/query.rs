@@ -45,7 +45,11 @@ where
 }
 
 /// Query points `(n, dim)` (or one point `(dim,)`) as owned points and whether one was given.
-fn query_points(obj: &Bound<'_, PyAny>, what: &str, dim: usize) -> PyResult<(Points, bool)> {
+fn query_points(
+    obj: &Bound<'_, PyAny>,
+    what: &'static str,
+    dim: usize,
+) -> PyResult<(Points, bool)> {
     let a = floats(obj, what)?;
     if a.shape().len() == 1 && a.shape()[0] == dim {
         return Ok((

@@ -153,3 +153,22 @@ def test_akima_methods_are_refused_or_computed_as_scipy_does(method):
     theirs = _outcome(lambda: si.Akima1DInterpolator(X5, Y5, method=method), probe)
     ours = _outcome(lambda: ls.Akima1DInterpolator(X5, Y5, method=method), probe)
     _compare(f"Akima1DInterpolator with method {method!r}", ours, theirs)
+
+
+@pytest.mark.parametrize("at", [0, 2, 4])
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda x, y: __import__("lekalo").pchip_slopes(x, y),
+        lambda x, y: __import__("lekalo").akima_slopes(x, y, "makima"),
+        lambda x, y: __import__("lekalo")._lekalo.pchip_pp(x, y),
+        lambda x, y: __import__("lekalo")._lekalo.akima_pp(x, y, "akima"),
+    ],
+)
+def test_lekalo_slopes_name_a_value_that_is_not_finite_as_y(call, at):
+    import lekalo
+
+    y = Y5.copy()
+    y[at] = np.inf
+    with pytest.raises(lekalo.InputError, match=rf"^y\[{at}\] is inf"):
+        call(X5, y)

@@ -39,7 +39,7 @@ pub(super) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 fn map_points<'py, F>(
     py: Python<'py>,
     arg: &Bound<'py, PyAny>,
-    what: &str,
+    what: &'static str,
     len: Option<usize>,
     f: F,
 ) -> PyResult<Bound<'py, PyAny>>
@@ -73,7 +73,7 @@ fn interpolation_map(
     InterpolationMap::new(degree, &kv, &ts).map_err(lib_err)
 }
 
-fn dim_of(a: &FloatArray<'_>, what: &str) -> PyResult<usize> {
+fn dim_of(a: &FloatArray<'_>, what: &'static str) -> PyResult<usize> {
     Ok(a.points(what)?.dim())
 }
 
