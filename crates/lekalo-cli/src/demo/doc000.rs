@@ -377,8 +377,8 @@ pub(super) fn end_conditions(s: &mut Section) -> Result<()> {
         zoom,
         Caption::new(
             "The same five curves within 0.02 of the first point (0, 0), magnified some 400 \
-             times. The three with given first derivatives (blue, red, and green, dashed where it \
-             lies on the blue) leave along the grey arrow, the given direction d0 = (1, 2), and turn within a few hundredths \
+             times. The three with given first derivatives, blue, red and dashed green \
+             (which lies on the blue), leave along the grey arrow, the given direction d0 = (1, 2), and turn within a few hundredths \
              towards the next point: |d0| = √5 is small beside the curve's length, 17 on the \
              parameter interval [0, 1]. The two with conditions on second derivatives (pink, \
              orange, nearly one line) leave in a direction of their own, about 20° lower.",

@@ -346,7 +346,8 @@ fn a_surface_grid_takes_end_conditions_and_knot_placements() {
         .clone();
     assert!((last[0].as_f64().unwrap() - 5.0).abs() < 1e-12, "{last}");
     assert!((last[1].as_f64().unwrap() - 4.0).abs() < 1e-12, "{last}");
-    let uniform = run(&["--knots", "uniform", "--end", "natural"]);
+    // (uniform knots with free ends: second-derivative ends take their own knots, "auto")
+    let uniform = run(&["--knots", "uniform"]);
     let ku: Vec<f64> = uniform["knots_u"]
         .as_array()
         .unwrap()
