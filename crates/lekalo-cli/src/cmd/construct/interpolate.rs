@@ -63,7 +63,6 @@ Examples:
   lekalo interpolate pts.csv --end natural -o natural.step
   lekalo interpolate pts.csv --end periodic --degree 3
   lekalo interpolate grid.csv --grid 4x3 --degree 3 --degree-v 2 -o surface.obj
-  lekalo interpolate grid.csv --grid 4x3 --end natural -o natural.json
   lekalo interpolate grid.csv --grid 4x3 --degree 2 --knots uniform -o uniform.json
   lekalo interpolate values.csv --grid 6x5x4 --degree 3,3,1 --param uniform -o tensor.json
   lekalo interpolate values.csv --grid 6x5x4 --degree 3,3,2 --param uniform --knots-u 0.4,0.6 --knots-in 3=0.5
