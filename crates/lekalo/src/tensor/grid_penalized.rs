@@ -544,36 +544,8 @@ impl AxisSmoother {
 mod tests {
     use super::*;
     use crate::fit::{gcv_score, smoothing_spline};
+    use crate::tensor::test_grids::{axis, sample};
     use proptest::prelude::*;
-
-    /// `m` coordinates on `[0, 1]`, warped by `warp` (not equally spaced for `warp ≠ 0`).
-    fn axis(m: usize, warp: f64) -> Vec<f64> {
-        (0..m)
-            .map(|i| {
-                let t = i as f64 / (m - 1) as f64;
-                t + warp * t * (1.0 - t)
-            })
-            .collect()
-    }
-
-    /// `f` at every node of the grid `xs`, the last direction fastest.
-    fn sample(xs: &[&[f64]], f: impl Fn(&[f64]) -> f64) -> Vec<f64> {
-        let total: usize = xs.iter().map(|x| x.len()).product();
-        let mut out = Vec::with_capacity(total);
-        let mut index = vec![0usize; xs.len()];
-        for _ in 0..total {
-            let p: Vec<f64> = index.iter().zip(xs).map(|(&i, x)| x[i]).collect();
-            out.push(f(&p));
-            for a in (0..xs.len()).rev() {
-                index[a] += 1;
-                if index[a] < xs[a].len() {
-                    break;
-                }
-                index[a] = 0;
-            }
-        }
-        out
-    }
 
     /// A deterministic pattern of noise in `[-1, 1]` (splitmix64 of `k`).
     fn noise(k: usize) -> f64 {

@@ -564,34 +564,8 @@ fn solve(grid: &Grid<'_>, axes: &[Axis<'_>], p: f64) -> Result<Solved> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tensor::test_grids::{axis, sample};
     use proptest::prelude::*;
-
-    fn axis(m: usize, warp: f64) -> Vec<f64> {
-        (0..m)
-            .map(|i| {
-                let t = i as f64 / (m - 1) as f64;
-                t + warp * t * (1.0 - t)
-            })
-            .collect()
-    }
-
-    fn sample(xs: &[&[f64]], f: impl Fn(&[f64]) -> f64) -> Vec<f64> {
-        let mut out = Vec::new();
-        let mut index = vec![0usize; xs.len()];
-        let total: usize = xs.iter().map(|x| x.len()).product();
-        for _ in 0..total {
-            let p: Vec<f64> = index.iter().zip(xs).map(|(&i, x)| x[i]).collect();
-            out.push(f(&p));
-            for a in (0..xs.len()).rev() {
-                index[a] += 1;
-                if index[a] < xs[a].len() {
-                    break;
-                }
-                index[a] = 0;
-            }
-        }
-        out
-    }
 
     /// `s = 0` interpolates on FITPACK's knots: the nodes for odd degrees, their midpoints for
     /// even degrees.

@@ -39,6 +39,7 @@
 //!   with a penalty weight per direction, given or chosen by GCV ([`tensor_grid_gcv_score`]):
 //!   the separable (sandwich) smoother, one sweep of the curve's banded smoothing solves per
 //!   direction.
+//! - `test_grids.rs` (tests only): the grids both grid fits' tests sample.
 //! - `integral.rs`: [`TensorBSpline::integral`], the integral over a box.
 //! - `scattered.rs`: [`tensor_scattered_least_squares`], least squares on scattered points in
 //!   `N` variables by banded normal equations, and [`tensor_scattered_least_squares_with`], the
@@ -108,5 +109,7 @@ pub use view::TensorBSplineRef;
 
 #[cfg(test)]
 mod eval_tests;
+#[cfg(test)]
+mod test_grids;
 #[cfg(test)]
 mod tests;
