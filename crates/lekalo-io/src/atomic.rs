@@ -428,9 +428,19 @@ pub fn check_not_input(path: &Path, inputs: &[PathBuf]) -> IoResult<()> {
 ///
 /// # Errors
 /// [`IoError::Read`] if the file is missing, unreadable or not UTF-8 (outside STEP and IGES);
-/// [`IoError::TooLarge`] if memory for it cannot be reserved.
+/// [`IoError::TooLarge`] if memory for it cannot be reserved; [`IoError::OverLimit`] above the
+/// input limit ([`limit_input_bytes`]).
 pub fn read_input(path: &Path) -> IoResult<(String, String)> {
-    let (mut bytes, name) = read_input_bytes(path)?;
+    read_input_within(path, MAX_INPUT_BYTES.load(Ordering::Relaxed))
+}
+
+/// [`read_input`] with the input limit `max_bytes` of this call instead of the process's (a
+/// library caller's own limit, such as Python's `max_input_bytes=`).
+///
+/// # Errors
+/// As [`read_input`].
+pub fn read_input_within(path: &Path, max_bytes: u64) -> IoResult<(String, String)> {
+    let (mut bytes, name) = read_input_bytes_within(path, max_bytes)?;
     if let Some(kind) = utf16(&bytes) {
         return Err(IoError::Read {
             path: PathBuf::from(name),
@@ -539,17 +549,16 @@ pub fn limit_input_bytes(max: u64) {
     MAX_INPUT_BYTES.store(max, Ordering::Relaxed);
 }
 
-/// [`IoError::TooLarge`] for the input `name` with more than `limit` bytes (`size` when known).
+/// [`IoError::OverLimit`] for the input `name` with more than `limit` bytes (`size` when known).
 fn input_too_large(name: &str, size: Option<u64>, limit: u64) -> IoError {
-    let (has, raise) = match size {
-        Some(n) => (format!("{n} bytes"), n.to_string()),
-        None => (format!("more than {limit} bytes"), "N".to_string()),
+    let has = match size {
+        Some(n) => format!("{n} bytes"),
+        None => format!("more than {limit} bytes"),
     };
-    IoError::TooLarge {
-        what: format!(
-            "{name}: {has}, above the input limit of {limit} bytes; raise the limit with \
-             --max-input-bytes {raise} if the input is meant to be that large"
-        ),
+    IoError::OverLimit {
+        what: format!("{name}: {has}, above the input limit of {limit} bytes"),
+        limit: crate::Limit::InputBytes,
+        raise_to: size,
     }
 }
 
@@ -573,15 +582,22 @@ const READ_PART: usize = 2 << 20;
 /// let e = lekalo_io::read_input_bytes("/dev/zero".as_ref()).unwrap_err().to_string();
 /// lekalo_io::limit_input_bytes(lekalo_io::DEFAULT_MAX_INPUT_BYTES);
 /// # #[cfg(target_os = "linux")]
-/// assert!(e.contains("/dev/zero: more than 1000 bytes, above the input limit of 1000 bytes; raise the limit with --max-input-bytes"), "{e}");
+/// assert!(e.contains("/dev/zero: more than 1000 bytes, above the input limit of 1000 bytes; raise the limit with a larger --max-input-bytes"), "{e}");
 /// ```
 ///
 /// # Errors
-/// [`IoError::Read`] if the file is missing or unreadable; [`IoError::TooLarge`] naming the
+/// [`IoError::Read`] if the file is missing or unreadable; [`IoError::OverLimit`] naming the
 /// input, its size and the limit if it is above the input limit, or if memory for it cannot be
 /// reserved.
 pub fn read_input_bytes(path: &Path) -> IoResult<(Vec<u8>, String)> {
-    let limit = MAX_INPUT_BYTES.load(Ordering::Relaxed);
+    read_input_bytes_within(path, MAX_INPUT_BYTES.load(Ordering::Relaxed))
+}
+
+/// [`read_input_bytes`] with the input limit `limit` of this call instead of the process's.
+///
+/// # Errors
+/// As [`read_input_bytes`].
+pub fn read_input_bytes_within(path: &Path, limit: u64) -> IoResult<(Vec<u8>, String)> {
     let (name, read): (String, Box<dyn std::io::Read>) = if path.as_os_str() == "-" {
         ("<stdin>".to_string(), Box::new(std::io::stdin()))
     } else {

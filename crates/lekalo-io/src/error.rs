@@ -123,6 +123,19 @@ pub enum IoError {
         /// What, the limit, and how to raise it.
         what: String,
     },
+    /// A count or size of the input is above a limit the caller set and may raise (`limit`):
+    /// the message says what, then how to raise it in the command line's words
+    /// ([`Limit::option`]); other front ends word the fix in their own vocabulary from the
+    /// same fields ([`IoError::message_with`]).
+    #[error("{what}; raise the limit with {} {}", .limit.spelled(*.raise_to, Limit::option), .limit.condition())]
+    OverLimit {
+        /// What is above the limit, with the input's name, the count and the limit.
+        what: String,
+        /// The limit.
+        limit: Limit,
+        /// The smallest value of the limit that admits this input, when it is known.
+        raise_to: Option<u64>,
+    },
     /// The object cannot be written in the requested format (e.g. a 4-D curve to STEP).
     #[error("{what}")]
     Unsupported {
@@ -156,6 +169,7 @@ impl IoError {
             | IoError::WouldOverwriteInput { .. }
             | IoError::WriteProtected { .. }
             | IoError::TooLarge { .. }
+            | IoError::OverLimit { .. }
             | IoError::Unsupported { .. } => true,
             IoError::Write { .. } | IoError::Render(_) | IoError::Cancelled { .. } => false,
         }
@@ -173,10 +187,75 @@ impl IoError {
         }
     }
 
+    /// The message with a limit's option named by `option` (for example Python's keyword,
+    /// `max_size`, where the command line says `--max-size`): [`IoError::OverLimit`] worded
+    /// from its fields, every other error as its `Display`.
+    ///
+    /// ```
+    /// use lekalo_io::{IoError, Limit};
+    /// let e = IoError::OverLimit { what: "c.step: 700 knots".into(), limit: Limit::Size, raise_to: Some(700) };
+    /// assert!(e.to_string().ends_with("raise the limit with --max-size 700 if the machine has the memory"));
+    /// let python = e.message_with(|l| if l == Limit::Size { "max_size=" } else { "max_input_bytes=" });
+    /// assert!(python.ends_with("raise the limit with max_size=700 if the machine has the memory"));
+    /// ```
+    #[must_use]
+    pub fn message_with(&self, option: impl Fn(Limit) -> &'static str) -> String {
+        match self {
+            IoError::OverLimit {
+                what,
+                limit,
+                raise_to,
+            } => format!(
+                "{what}; raise the limit with {} {}",
+                limit.spelled(*raise_to, option),
+                limit.condition()
+            ),
+            other => other.to_string(),
+        }
+    }
+
     pub(crate) fn syntax(at: Location, message: impl Into<String>) -> Self {
         IoError::Syntax {
             at,
             message: message.into(),
+        }
+    }
+}
+
+/// A limit of reading that the caller sets and may raise ([`IoError::OverLimit`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Limit {
+    /// The entities, control points and knots of one read (the command line's `--max-size`).
+    Size,
+    /// The bytes of one input (the command line's `--max-input-bytes`).
+    InputBytes,
+}
+
+impl Limit {
+    /// The command line's option, with the space before its value.
+    #[must_use]
+    pub fn option(self) -> &'static str {
+        match self {
+            Limit::Size => "--max-size ",
+            Limit::InputBytes => "--max-input-bytes ",
+        }
+    }
+
+    /// When raising the limit is the fix.
+    fn condition(self) -> &'static str {
+        match self {
+            Limit::Size => "if the machine has the memory",
+            Limit::InputBytes => "if the input is meant to be that large",
+        }
+    }
+
+    /// The option as `option` names it, with the value `raise_to` when it is known
+    /// (`--max-size 700`), as "a larger" option otherwise.
+    fn spelled(self, raise_to: Option<u64>, option: impl Fn(Limit) -> &'static str) -> String {
+        let name = option(self);
+        match raise_to {
+            Some(n) => format!("{name}{n}"),
+            None => format!("a larger {}", name.trim_end_matches([' ', '='])),
         }
     }
 }

@@ -57,11 +57,11 @@ use tables::{numfmt, samples, surface_samples};
 pub use analysis::{curvature, uniform};
 pub use atomic::{
     check_not_input, limit_input_bytes, note_read, protect_files_read, read_input,
-    read_input_bytes, remove_temporary_files, strip_bom, strip_bom_str, utf8_text, write_atomic,
-    write_atomic_seek, write_atomic_send, write_atomic_stream, write_atomic_with, WriteOptions,
-    WriteSeek, DEFAULT_MAX_INPUT_BYTES,
+    read_input_bytes, read_input_bytes_within, read_input_within, remove_temporary_files,
+    strip_bom, strip_bom_str, utf8_text, write_atomic, write_atomic_seek, write_atomic_send,
+    write_atomic_stream, write_atomic_with, WriteOptions, WriteSeek, DEFAULT_MAX_INPUT_BYTES,
 };
-pub use error::{IoError, IoResult, Location};
+pub use error::{IoError, IoResult, Limit, Location};
 pub use face_json::{face_to_json_line, read_face};
 pub use figure_check::check_svg;
 pub use iges::{

@@ -254,7 +254,16 @@ pub(crate) fn io_err(e: lekalo_io::IoError) -> PyErr {
             return made.unwrap_or_else(|err| err);
         }
     }
-    raise(false, e.to_string())
+    raise(false, e.message_with(limit_keyword))
+}
+
+/// The keyword argument that raises a limit of reading, in a message's "raise the limit with
+/// max_size=N" ([`lekalo_io::IoError::message_with`]).
+fn limit_keyword(limit: lekalo_io::Limit) -> &'static str {
+    match limit {
+        lekalo_io::Limit::Size => "max_size=",
+        lekalo_io::Limit::InputBytes => "max_input_bytes=",
+    }
 }
 
 /// The library's error as `lekalo.InputError`, prefixed with the Python argument at fault.

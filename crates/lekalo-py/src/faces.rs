@@ -242,15 +242,19 @@ fn face(inner: StepFace) -> PyFace {
     }
 }
 
-/// The file at `path` (or standard input for `-`) read by `read(text, name)` with the GIL
-/// released, as both CAD readers do.
+/// The file at `path` (or standard input for `-`), of at most `max_input_bytes` bytes, read by
+/// `read(text, name)` with the GIL released, as both CAD readers do.
 fn read_cad<R: Send>(
     py: Python<'_>,
     path: &std::path::Path,
+    max_input_bytes: u64,
     read: impl FnOnce(&str, &str) -> lekalo_io::IoResult<R> + Send,
 ) -> PyResult<R> {
-    let (text, name) = lekalo_io::read_input(path).map_err(io_err)?;
-    py.detach(|| read(&text, &name)).map_err(io_err)
+    py.detach(|| {
+        let (text, name) = lekalo_io::read_input_within(path, max_input_bytes)?;
+        read(&text, &name)
+    })
+    .map_err(io_err)
 }
 
 /// Reads a STEP file: ``{"shapes": [...], "skipped": [...], "length_unit": str, "schema":
@@ -260,19 +264,24 @@ fn read_cad<R: Send>(
 /// them all and ``"skipped_kinds"`` counts them by type and reason (dicts ``{"entity",
 /// "reason", "count", "first_id"}``, the most frequent first); with ``faces=True`` likewise
 /// ``"skipped_faces_total"`` and ``"skipped_faces_kinds"``. ``max_size`` bounds the entities
-/// and the control points and knots of the file, as the CLI's ``--max-size``.
+/// and the control points and knots of the file, as the CLI's ``--max-size``, and
+/// ``max_input_bytes`` its bytes (default 1 GiB), as the CLI's ``--max-input-bytes``: a file
+/// above either is refused with ``lekalo.InputError`` naming the keyword to raise, before its
+/// geometry is allocated.
 #[pyfunction]
-#[pyo3(signature = (path, *, faces = false, max_size = IntArg::of(10_000_000), skipped_listed = Some(IntArg::of(1000))), text_signature = "(path, *, faces=False, max_size=10000000, skipped_listed=1000)")]
+#[pyo3(signature = (path, *, faces = false, max_size = IntArg::of(10_000_000), skipped_listed = Some(IntArg::of(1000)), max_input_bytes = IntArg::of(1 << 30)), text_signature = "(path, *, faces=False, max_size=10000000, skipped_listed=1000, max_input_bytes=1073741824)")]
 pub(crate) fn read_step<'py>(
     py: Python<'py>,
     path: std::path::PathBuf,
     faces: bool,
     max_size: IntArg,
     skipped_listed: Option<IntArg>,
+    max_input_bytes: IntArg,
 ) -> PyResult<Bound<'py, PyDict>> {
     let max_size = max_size.count("max_size")?;
     let listed = listed(skipped_listed)?;
-    let r = read_cad(py, &path, |text, name| {
+    let max_bytes = max_input_bytes.count("max_input_bytes")? as u64;
+    let r = read_cad(py, &path, max_bytes, |text, name| {
         let none = lekalo::Progress::new();
         lekalo_io::read_step_with_progress(text, name, max_size, faces, listed, &none)
     })?;
@@ -295,17 +304,19 @@ pub(crate) fn read_step<'py>(
 /// ``Face``) and ``"skipped_faces"``; as ``read_step``
 /// otherwise (ids are directory-entry sequence numbers).
 #[pyfunction]
-#[pyo3(signature = (path, *, faces = false, max_size = IntArg::of(10_000_000), skipped_listed = Some(IntArg::of(1000))), text_signature = "(path, *, faces=False, max_size=10000000, skipped_listed=1000)")]
+#[pyo3(signature = (path, *, faces = false, max_size = IntArg::of(10_000_000), skipped_listed = Some(IntArg::of(1000)), max_input_bytes = IntArg::of(1 << 30)), text_signature = "(path, *, faces=False, max_size=10000000, skipped_listed=1000, max_input_bytes=1073741824)")]
 pub(crate) fn read_iges<'py>(
     py: Python<'py>,
     path: std::path::PathBuf,
     faces: bool,
     max_size: IntArg,
     skipped_listed: Option<IntArg>,
+    max_input_bytes: IntArg,
 ) -> PyResult<Bound<'py, PyDict>> {
     let max_size = max_size.count("max_size")?;
     let listed = listed(skipped_listed)?;
-    let r = read_cad(py, &path, |text, name| {
+    let max_bytes = max_input_bytes.count("max_input_bytes")? as u64;
+    let r = read_cad(py, &path, max_bytes, |text, name| {
         let none = lekalo::Progress::new();
         lekalo_io::read_iges_with_progress(text, name, max_size, faces, listed, &none)
     })?;

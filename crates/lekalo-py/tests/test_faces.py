@@ -238,8 +238,33 @@ def test_read_step_without_faces_and_with_a_limit(tmp_path):
     r = lekalo.read_step(path)
     assert "faces" not in r and r["length_unit"].startswith("millimetre")
     assert any(isinstance(s, lekalo.BSplineSurface) for s in r["shapes"])
-    with pytest.raises(lekalo.InputError, match="max-size"):
+    # the keyword to raise, in Python's words, with the count that would admit the file
+    with pytest.raises(lekalo.InputError, match=r"above the size limit 20; raise the limit with max_size=\d+ if"):
         lekalo.read_step(path, faces=True, max_size=20)
+
+
+def test_cad_files_above_the_input_limit_are_refused_by_their_size(tmp_path):
+    step = write(tmp_path, "plate.step", PLATE)
+    size = step.stat().st_size
+    assert lekalo.read_step(step, max_input_bytes=size)["shapes"]
+    with pytest.raises(lekalo.InputError) as e:
+        lekalo.read_step(step, max_input_bytes=size - 1)
+    assert f"{size} bytes, above the input limit of {size - 1} bytes" in str(e.value)
+    assert f"raise the limit with max_input_bytes={size} if the input is meant" in str(e.value)
+    assert "--" not in str(e.value)
+    iges = Path(__file__).parent / "data" / "plate_144.igs"
+    with pytest.raises(lekalo.InputError, match="max_input_bytes="):
+        lekalo.read_iges(iges, max_input_bytes=100)
+    with pytest.raises((lekalo.InputError, ValueError), match="max_input_bytes"):
+        lekalo.read_iges(iges, max_input_bytes=-1)
+
+
+def test_an_endless_device_stops_at_the_input_limit():
+    # no size to check first: read through a cap and refused once past it, not read forever
+    if not Path("/dev/zero").exists():
+        pytest.skip("no /dev/zero")
+    with pytest.raises(lekalo.InputError, match=r"more than 4096 bytes.*a larger max_input_bytes"):
+        lekalo.read_step("/dev/zero", max_input_bytes=4096)
 
 
 def test_iges_trimmed_surfaces_read_as_faces():

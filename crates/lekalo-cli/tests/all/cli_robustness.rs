@@ -1105,7 +1105,7 @@ fn endless_and_oversized_inputs_are_refused_at_the_input_limit() {
         assert!(
             err.contains(
                 "/dev/zero: more than 1000000 bytes, above the input limit of 1000000 bytes; \
-                 raise the limit with --max-input-bytes"
+                 raise the limit with a larger --max-input-bytes"
             ),
             "{args:?}: {err}"
         );

@@ -52,7 +52,7 @@ fn iges_text((curve, surface): &(Object, Surface)) -> String {
 
 /// The message of a refusal by the size limit.
 fn too_large(e: IoError) -> String {
-    assert!(matches!(e, IoError::TooLarge { .. }), "{e}");
+    assert!(matches!(e, IoError::OverLimit { .. }), "{e}");
     e.to_string()
 }
 

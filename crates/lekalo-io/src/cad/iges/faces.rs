@@ -62,7 +62,7 @@ const MAX_NESTING: usize = 8;
 /// count against `max_size` as well.
 ///
 /// # Errors
-/// As [`super::read_iges_limited`]; [`IoError::TooLarge`] when the faces' surfaces and edges
+/// As [`super::read_iges_limited`]; [`IoError::OverLimit`] when the faces' surfaces and edges
 /// hold more than `max_size` control points together, or the composite curves of their
 /// boundaries copy more than that out of the curves they list.
 pub fn read_iges_faces(text: &str, source: &str, max_size: usize) -> IoResult<IgesRead> {
@@ -155,20 +155,23 @@ pub(super) fn read_faces_with_progress(
                         .sum::<usize>();
                 used = used.saturating_add(points);
                 if used > max_size {
-                    return Err(IoError::TooLarge {
+                    return Err(IoError::OverLimit {
                         what: format!(
-                            "{source}: face D{id}: {used} control points in the faces read so far, above the size limit {max_size}; raise the limit with --max-size {used} if the machine has the memory"
+                            "{source}: face D{id}: {used} control points in the faces read so far, above the size limit {max_size}"
                         ),
+                        limit: crate::Limit::Size,
+                        raise_to: Some(used as u64),
                     });
                 }
                 faces.push(f);
             }
             Err(reason) if cx.over.get().is_some() => {
-                return Err(IoError::TooLarge {
+                return Err(IoError::OverLimit {
                     what: format!(
-                        "{source}: face D{id}: {reason}; composite curves that list the same curves many times expand to that many copies; raise the limit with --max-size {} if the machine has the memory",
-                        cx.spent.get()
+                        "{source}: face D{id}: {reason}; composite curves that list the same curves many times expand to that many copies"
                     ),
+                    limit: crate::Limit::Size,
+                    raise_to: Some(cx.spent.get() as u64),
                 });
             }
             Err(reason) => skipped.push(StepSkipped {
@@ -303,7 +306,7 @@ impl Faces<'_> {
 
     /// Counts `points` control points copied out of curve `id` against the read's size limit;
     /// past it, marks the read as over the limit ([`read_faces_with_progress`] then fails with
-    /// [`IoError::TooLarge`]) and answers why.
+    /// [`IoError::OverLimit`]) and answers why.
     fn spend(&self, id: u64, points: usize) -> Result<(), String> {
         let spent = self.spent.get().saturating_add(points);
         self.spent.set(spent);

@@ -389,7 +389,7 @@ fn a_chain_of_100000_composite_curves_is_refused_at_the_nesting_limit() {
 }
 
 /// Composite curves that list the next one twenty times over, seven deep (20^7 copies of one
-/// line): the copies count against the size limit and the read fails with `TooLarge` naming
+/// line): the copies count against the size limit and the read fails with `OverLimit` naming
 /// `--max-size` once past it, instead of expanding them; within the limit the same
 /// references (listed twice, three deep) are read.
 #[test]
@@ -410,7 +410,7 @@ fn composite_curves_listed_many_times_over_stop_at_the_size_limit() {
     let refs: Vec<&str> = entities.iter().map(String::as_str).collect();
     let start = std::time::Instant::now();
     let e = read_iges_faces(&plate(&refs), "plate.igs", 1_000_000).unwrap_err();
-    assert!(matches!(e, crate::IoError::TooLarge { .. }), "{e}");
+    assert!(matches!(e, crate::IoError::OverLimit { .. }), "{e}");
     let msg = e.to_string();
     assert!(
         msg.contains("face D47") && msg.contains("above the size limit 1000000"),

@@ -72,12 +72,12 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
 /// assert!(read_iges_limited(&text, "line.igs", 1000).is_ok());
 /// // 2 control points and 4 knots are above a limit of 5
 /// let e = read_iges_limited(&text, "line.igs", 5).unwrap_err();
-/// assert!(matches!(e, IoError::TooLarge { .. }) && e.to_string().contains("--max-size"));
+/// assert!(matches!(e, IoError::OverLimit { .. }) && e.to_string().contains("--max-size"));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
 /// # Errors
-/// As [`read_iges`]; [`IoError::TooLarge`] naming the count and `--max-size` for a file above
+/// As [`read_iges`]; [`IoError::OverLimit`] naming the count and `--max-size` for a file above
 /// the limit.
 pub fn read_iges_limited(text: &str, source: &str, max_size: usize) -> IoResult<IgesRead> {
     read_entities(
@@ -223,10 +223,12 @@ pub(super) fn read_entities(
     let mut skipped = Vec::new();
     let entities = d.len() / 2;
     if entities > max_size {
-        return Err(IoError::TooLarge {
+        return Err(IoError::OverLimit {
             what: format!(
-                "{source}: {entities} entities in the directory section, above the size limit {max_size}; raise the limit with --max-size {entities} if the machine has the memory"
+                "{source}: {entities} entities in the directory section, above the size limit {max_size}"
             ),
+            limit: crate::Limit::Size,
+            raise_to: Some(entities as u64),
         });
     }
     // control points and knots of the B-splines read so far, against the size limit
@@ -234,10 +236,12 @@ pub(super) fn read_entities(
     let mut charge = |seq: u64, n: usize| -> IoResult<()> {
         used = used.saturating_add(n);
         if used > max_size {
-            return Err(IoError::TooLarge {
+            return Err(IoError::OverLimit {
                 what: format!(
-                    "{source}: entity D{seq}: {used} control points and knots with this entity's {n}, above the size limit {max_size}; raise the limit with --max-size {used} if the machine has the memory"
+                    "{source}: entity D{seq}: {used} control points and knots with this entity's {n}, above the size limit {max_size}"
                 ),
+                limit: crate::Limit::Size,
+                raise_to: Some(used as u64),
             });
         }
         Ok(())

@@ -64,12 +64,12 @@ pub fn read_step(text: &str, source: &str) -> IoResult<StepRead> {
 /// assert!(read_step_limited(&text, "line.step", 1000).is_ok());
 /// // 2 control points and 4 knots are above a limit of 5
 /// let e = read_step_limited(&text, "line.step", 5).unwrap_err();
-/// assert!(matches!(e, IoError::TooLarge { .. }) && e.to_string().contains("--max-size"));
+/// assert!(matches!(e, IoError::OverLimit { .. }) && e.to_string().contains("--max-size"));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
 /// # Errors
-/// As [`read_step`]; [`IoError::TooLarge`] naming the count and `--max-size` for a file above
+/// As [`read_step`]; [`IoError::OverLimit`] naming the count and `--max-size` for a file above
 /// the limit.
 pub fn read_step_limited(text: &str, source: &str, max_size: usize) -> IoResult<StepRead> {
     read(
@@ -274,9 +274,14 @@ fn convert(
     };
     // a refusal by the size limit, wherever it happened (a skipped entity included)
     let too_large = |rd: &Reader<'_>| {
-        rd.over.borrow().as_ref().map(|why| IoError::TooLarge {
-            what: format!("{source}: {why}"),
-        })
+        rd.over
+            .borrow()
+            .as_ref()
+            .map(|(why, total)| IoError::OverLimit {
+                what: format!("{source}: {why}"),
+                limit: crate::Limit::Size,
+                raise_to: Some(*total),
+            })
     };
     let ids = parsed.instances.ids();
     let mut shapes = Vec::new();

@@ -49,7 +49,7 @@ pub(super) struct Reader<'a> {
     /// Control points and knots read so far.
     pub(super) used: Cell<usize>,
     /// The refusal, once the file went past [`Reader::max_size`].
-    pub(super) over: RefCell<Option<String>>,
+    pub(super) over: RefCell<Option<(String, u64)>>,
     /// The control points of each basis of trimmed curves met, by id (see
     /// [`Reader::trimmed`]).
     pub(super) basis_sizes: RefCell<std::collections::HashMap<u64, usize>>,
@@ -62,15 +62,17 @@ pub(super) struct Reader<'a> {
 impl Reader<'_> {
     /// Counts `n` more control points or knots of the entity being read (`what`), before they
     /// are allocated: past [`Reader::max_size`] the entity is refused and the refusal kept for
-    /// the whole read ([`IoError::TooLarge`](crate::IoError::TooLarge) in `read_step`).
+    /// the whole read ([`IoError::OverLimit`](crate::IoError::OverLimit) in `read_step`).
     pub(super) fn charge(&self, n: usize, what: &str) -> Result<(), Why> {
         let total = self.used.get().saturating_add(n);
         if total > self.max_size {
             let why = format!(
-                "{total} control points and knots with this entity's {n} {what}, above the size limit {}; raise the limit with --max-size {total} if the machine has the memory",
+                "{total} control points and knots with this entity's {n} {what}, above the size limit {}",
                 self.max_size
             );
-            self.over.borrow_mut().get_or_insert_with(|| why.clone());
+            self.over
+                .borrow_mut()
+                .get_or_insert_with(|| (why.clone(), total as u64));
             return Err(why);
         }
         self.used.set(total);

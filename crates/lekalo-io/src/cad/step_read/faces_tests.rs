@@ -375,7 +375,7 @@ fn faces_that_cannot_be_read_are_skipped_with_the_reason() {
 #[test]
 fn faces_keep_to_the_size_limit() {
     let e = read_step_faces(&file(PATCH), "t.step", 20).unwrap_err();
-    assert!(matches!(e, IoError::TooLarge { .. }), "{e}");
+    assert!(matches!(e, IoError::OverLimit { .. }), "{e}");
     // a multiplicity of 2^40 in an edge refuses the file before allocating
     let huge = PATCH.replace(
         "#121=B_SPLINE_CURVE_WITH_KNOTS('',1,(#101,#103),.UNSPECIFIED.,.F.,.F.,(2,2)",

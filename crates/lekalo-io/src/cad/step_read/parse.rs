@@ -601,7 +601,7 @@ impl<'a> Instances<'a> {
 const REPORT_BYTES: usize = 1 << 16;
 
 /// Parses the exchange structure; more than `max_entities` instances is
-/// [`IoError::TooLarge`], refused before the next one is stored. `meter` is told the bytes
+/// [`IoError::OverLimit`], refused before the next one is stored. `meter` is told the bytes
 /// parsed every [`REPORT_BYTES`] and stops the parse when cancelled.
 ///
 /// The whole text is checked here (every error of syntax is reported with its line), but only
@@ -643,11 +643,13 @@ pub(super) fn parse<'a>(
             body?;
             lx.expect(b';')?;
             if ids.len() >= max_entities {
-                return Err(IoError::TooLarge {
+                return Err(IoError::OverLimit {
                     what: format!(
-                        "{source}: line {}: more than {max_entities} entity instances, above the size limit {max_entities}; raise the limit with --max-size if the machine has the memory",
+                        "{source}: line {}: more than {max_entities} entity instances, above the size limit {max_entities}",
                         line_of(text, start)
                     ),
+                    limit: crate::Limit::Size,
+                    raise_to: None,
                 });
             }
             let k = if last.1 != u32::MAX && last.0 == names {
