@@ -238,9 +238,19 @@ def test_read_step_without_faces_and_with_a_limit(tmp_path):
     r = lekalo.read_step(path)
     assert "faces" not in r and r["length_unit"].startswith("millimetre")
     assert any(isinstance(s, lekalo.BSplineSurface) for s in r["shapes"])
-    # the keyword to raise, in Python's words, with the count that would admit the file
-    with pytest.raises(lekalo.InputError, match=r"above the size limit 20; raise the limit with max_size=\d+ if"):
+    # the keyword to raise, in Python's words: the file is refused while its entity instances
+    # are counted, before the count that would admit it is known
+    with pytest.raises(lekalo.InputError) as e:
         lekalo.read_step(path, faces=True, max_size=20)
+    assert "more than 20 entity instances, above the size limit 20; raise the limit with a larger max_size if" in str(e.value)
+    assert "--" not in str(e.value)
+    # counts known when refused: the value that admits them (IGES's directory entries, then
+    # the control points and knots read so far)
+    iges = Path(__file__).parent / "data" / "plate_144.igs"
+    with pytest.raises(lekalo.InputError, match=r"16 entities in the directory section, above the size limit 5; raise the limit with max_size=16 if"):
+        lekalo.read_iges(iges, max_size=5)
+    with pytest.raises(lekalo.InputError, match=r"24 control points and knots with this entity's 6, above the size limit 20; raise the limit with max_size=24 if"):
+        lekalo.read_iges(iges, max_size=20)
 
 
 def test_cad_files_above_the_input_limit_are_refused_by_their_size(tmp_path):
