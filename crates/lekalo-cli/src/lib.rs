@@ -110,7 +110,7 @@ Exit codes: 0 success, 2 bad input, 3 internal failure.";
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Build a curve or surface object from control points (and knots, weights).
+    /// Build a curve, surface or spline in N parameters from control points (and knots, weights).
     Make(cmd::make::MakeArgs),
     /// Evaluate points, derivatives and curvature at given parameters or on a uniform sampling.
     Eval(cmd::eval::EvalArgs),

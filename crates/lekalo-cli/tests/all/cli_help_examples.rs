@@ -98,6 +98,8 @@ fn overrides(path: &str) -> Vec<(&'static str, String)> {
     };
     match path {
         "interpolate" => vec![("pts.csv", "1,1\n2,3\n4,3\n5,0\n".into())],
+        // one weight per point of the 6 × 5 × 4 net values.csv
+        "make" => vec![("weights.txt", rows(120, &|i| format!("{}", 1.0 + 0.5 * (i % 3.0))))],
         "bezier elevate" => vec![("net.csv", net(12))],
         "bezier" | "bezier reduce" | "bezier real-degree" | "bezier change" => {
             vec![("net.csv", net(20))]

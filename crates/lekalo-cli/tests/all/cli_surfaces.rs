@@ -321,6 +321,9 @@ fn a_curvature_map_spans_the_library_curvatures_on_its_grid() {
 #[path = "cli_surfaces/tensor.rs"]
 mod tensor;
 
+#[path = "cli_surfaces/make_tensor.rs"]
+mod make_tensor;
+
 /// The help of `eval`, `convert` and `project` names a surface's parameter columns as the
 /// commands write them: the columns of the header before the point's `x`, listed as `u, v`.
 #[test]

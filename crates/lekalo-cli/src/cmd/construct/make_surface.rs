@@ -100,7 +100,7 @@ pub(crate) fn run(m: &SurfaceMake<'_>, cx: &Context) -> Result<()> {
                     "a NURBS surface needs --weights, one per control point, row by row",
                 );
             };
-            let w = numbers(w, "--weights")?;
+            let w = crate::cmd::explicit::parameters(cx, w, "--weights")?;
             let ku = knots(m.knots_u, p, nu, "--knots-u")?;
             let kv = knots(m.knots_v, q, nv, "--knots-v")?;
             Surface::Nurbs(NurbsSurface::new(
@@ -114,6 +114,7 @@ pub(crate) fn run(m: &SurfaceMake<'_>, cx: &Context) -> Result<()> {
             )?)
         }
     };
-    let inputs: Vec<PathBuf> = vec![m.control.to_path_buf()];
+    let mut inputs: Vec<PathBuf> = vec![m.control.to_path_buf()];
+    inputs.extend(m.weights.map(PathBuf::from).filter(|p| p.is_file()));
     emit(m.output, surface.to_json_pretty().as_bytes(), &inputs, cx)
 }

@@ -3,6 +3,7 @@
 //!
 //! - `make.rs`: `lekalo make`: curves from control points;
 //! - `make_surface.rs`: `lekalo make` of surfaces;
+//! - `make_tensor.rs`: `lekalo make` of splines in N parameters;
 //! - `interpolate.rs`: `lekalo interpolate`: curves, surfaces and grids through points;
 //! - `explicit.rs`: explicit parameters and tangents read from files;
 //! - `tensor.rs`: splines in N parameters for interpolate, eval and info;
@@ -22,5 +23,6 @@ pub(crate) mod knot;
 pub(crate) mod knots;
 pub(crate) mod make;
 pub(crate) mod make_surface;
+pub(crate) mod make_tensor;
 pub(crate) mod pp;
 pub(crate) mod tensor;

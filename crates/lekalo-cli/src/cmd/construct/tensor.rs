@@ -25,11 +25,17 @@ use crate::values::numbers;
 
 /// The factors of a `--grid` size `AxBxC…` (also `×`), each at least 1.
 pub(crate) fn grid_factors(text: &str) -> Result<Vec<usize>> {
+    size_factors(text, "--grid")
+}
+
+/// The factors of a size `AxBxC…` (also `×`) given to `option` (`--grid`, `--net`), each at
+/// least 1.
+pub(crate) fn size_factors(text: &str, option: &str) -> Result<Vec<usize>> {
     text.split(['x', 'X', '×'])
         .map(|s| match s.trim().parse::<usize>() {
             Ok(n) if n >= 1 => Ok(n),
             _ => bad_input(format!(
-                "--grid: \"{}\" in \"{text}\" is not a positive integer; write the grid's size in each direction, e.g. 5x4x3",
+                "{option}: \"{}\" in \"{text}\" is not a positive integer; write the size in each direction, e.g. 5x4x3",
                 s.trim()
             )),
         })
@@ -377,20 +383,45 @@ pub(crate) fn checked_grid_values(
     file: &Path,
     cx: &Context,
 ) -> Result<Points> {
-    // the size, refused before the values are read
-    let Some(nodes) = factors
+    checked_values(("--grid", grid), "grid nodes", factors, file, cx)
+}
+
+/// The number of nodes of the size `text` (`factors`) given to `option`, refused when it
+/// overflows or is above `--max-size` (before anything of that size is allocated); `nodes`
+/// names them in the messages (`grid nodes`, `control points`).
+pub(crate) fn checked_nodes(
+    (option, text): (&str, &str),
+    nodes: &str,
+    factors: &[usize],
+    cx: &Context,
+) -> Result<usize> {
+    let Some(count) = factors
         .iter()
         .try_fold(1usize, |acc, &n| acc.checked_mul(n))
     else {
         return bad_input(format!(
-            "--grid {grid}: the number of grid nodes overflows; give a smaller grid"
+            "{option} {text}: the number of {nodes} overflows; give a smaller size"
         ));
     };
-    cx.check_size(nodes, "--grid")?;
+    cx.check_size(count, option)?;
+    Ok(count)
+}
+
+/// The rows of `file` for the nodes of the size `text` (`factors`) given to `option` (one row
+/// a node, the first direction slowest, or a `.npy` array of that shape), their count checked
+/// against the size's ([`checked_nodes`], before the file is read).
+pub(crate) fn checked_values(
+    (option, text): (&str, &str),
+    nodes: &str,
+    factors: &[usize],
+    file: &Path,
+    cx: &Context,
+) -> Result<Points> {
+    let count = checked_nodes((option, text), nodes, factors, cx)?;
     let (values, name) = grid_values(cx, file, factors)?;
-    if values.len() != nodes {
+    if values.len() != count {
         return bad_input(format!(
-            "--grid {grid}: {nodes} grid nodes, but {name} holds {} rows (one row per node, the first direction slowest)",
+            "{option} {text}: {count} {nodes}, but {name} holds {} rows (one row per node, the first direction slowest)",
             values.len()
         ));
     }

@@ -106,7 +106,7 @@ fn a_grid_of_values_interpolates_evaluates_and_reports() {
 }
 
 /// A float64 `.npy` file of `shape` holding `data` (C order).
-fn npy(shape: &[usize], data: &[f64]) -> Vec<u8> {
+pub(super) fn npy(shape: &[usize], data: &[f64]) -> Vec<u8> {
     let dims: Vec<String> = shape.iter().map(ToString::to_string).collect();
     let mut header = format!(
         "{{'descr': '<f8', 'fortran_order': False, 'shape': ({},), }}",
