@@ -2,7 +2,8 @@
 //! `CubicSpline` (`docs/theory/interpolation.md#slopes-of-the-c2-cubic`): one tridiagonal
 //! system for the slopes `s_i = S'(x_i)` with SciPy's end rows (not-a-knot, first or second
 //! derivative, periodic), solved for every column of the data at once
-//! ([`crate::numeric::tridiagonal`]), then the pieces in SciPy's power form
+//! ([`crate::numeric::tridiagonal`]; one column from both ends at once,
+//! [`crate::numeric::twisted`]), then the pieces in SciPy's power form
 //! ([`crate::pp::cubic_hermite_power_into`]).
 
 use crate::error::{check_finite, Error, Result, MAX_SCALARS};
@@ -10,6 +11,7 @@ use crate::knots::check_breakpoints;
 use crate::numeric::tridiagonal::{
     solve_tridiagonal, solve_unpivoted, Bands, StoredBands, Tridiagonal,
 };
+use crate::numeric::twisted::solve_twisted;
 use crate::pp::cubic_hermite_power_into;
 
 /// The condition at one end of a C² cubic spline (SciPy's `bc_type` entries).
@@ -142,7 +144,14 @@ fn slopes_with_scratch(
             &mut own[..]
         }
     };
-    if solve_unpivoted(&rows, slopes, dim, recip) {
+    if dim == 1 {
+        // one column: eliminated from both ends at once (two dependent chains of half the
+        // length); a pivot that is not positive leaves partial work, formed again below
+        if solve_twisted(&rows, slopes, recip) {
+            return Ok(());
+        }
+        rows.right_hand_side(y, dim, start, end, slopes);
+    } else if solve_unpivoted(&rows, slopes, dim, recip) {
         return Ok(());
     }
     // a pivot that is not positive (not on strictly increasing breakpoints): the stored bands,
