@@ -258,7 +258,7 @@ pub(crate) fn io_err(e: lekalo_io::IoError) -> PyErr {
 }
 
 /// The keyword argument that raises a limit of reading, in a message's "raise the limit with
-/// max_size=N" ([`lekalo_io::IoError::message_with`]).
+/// `max_size=N`" ([`lekalo_io::IoError::message_with`]).
 fn limit_keyword(limit: lekalo_io::Limit) -> &'static str {
     match limit {
         lekalo_io::Limit::Size => "max_size=",

@@ -211,7 +211,10 @@ mod tests {
             let want = pivoted(&dl, &d, &du, &rhs);
             let scale = want.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
             for (i, (a, b)) in x.iter().zip(&want).enumerate() {
-                assert!((a - b).abs() <= 1e-14 * scale, "n = {n}, row {i}: {a} vs {b}");
+                assert!(
+                    (a - b).abs() <= 1e-14 * scale,
+                    "n = {n}, row {i}: {a} vs {b}"
+                );
             }
         }
     }
