@@ -54,9 +54,9 @@ impl Sweep {
     /// takes a multiplication and a subtraction on the chain where the pivot recurrence
     /// `p' = d − c/p` would take a division; both minors are rescaled together by an exact
     /// power of two as they grow or shrink. The reduced right-hand side is
-    /// `rhs − (a/p)·value`. `ok` is cleared when the new pivot is not positive and finite.
+    /// `rhs − (a/p)·value`.
     #[inline(always)]
-    fn step(&mut self, d: f64, c: f64, a: f64, rhs: f64, ok: &mut bool) {
+    fn step(&mut self, d: f64, c: f64, a: f64, rhs: f64) {
         let mut next = d * self.minor - c * self.prev;
         let mut minor = self.minor;
         let size = next.abs();
@@ -69,8 +69,6 @@ impl Sweep {
         }
         self.value = rhs - (a * self.recip) * self.value;
         let recip = minor / next;
-        // a pivot in (0, ∞) has a reciprocal in (0, ∞); NaN fails both
-        *ok &= recip > 0.0 && recip < f64::INFINITY;
         self.prev = minor;
         self.minor = next;
         self.recip = recip;
@@ -89,36 +87,36 @@ pub(crate) fn solve_twisted(m: &impl Bands, b: &mut [f64], recip: &mut [f64]) ->
     let k = (n - 1) / 2;
     let mut down = Sweep::start(m.diag(0), b[0]);
     let mut up = Sweep::start(m.diag(n - 1), b[n - 1]);
-    let mut ok = [down.recip, up.recip]
-        .iter()
-        .all(|&r| r > 0.0 && r < f64::INFINITY);
     recip[0] = down.recip;
     recip[n - 1] = up.recip;
     let both = (n - 2 - k).min(k);
     for s in 0..both {
         let (i, j) = (s + 1, n - 2 - s);
         let (l, u) = (m.lower(i - 1), m.upper(i - 1));
-        down.step(m.diag(i), l * u, l, b[i], &mut ok);
+        down.step(m.diag(i), l * u, l, b[i]);
         let (l, u) = (m.lower(j), m.upper(j));
-        up.step(m.diag(j), l * u, u, b[j], &mut ok);
+        up.step(m.diag(j), l * u, u, b[j]);
         (b[i], recip[i]) = (down.value, down.recip);
         (b[j], recip[j]) = (up.value, up.recip);
     }
     for i in both + 1..=k {
         let (l, u) = (m.lower(i - 1), m.upper(i - 1));
-        down.step(m.diag(i), l * u, l, b[i], &mut ok);
+        down.step(m.diag(i), l * u, l, b[i]);
         (b[i], recip[i]) = (down.value, down.recip);
     }
     for j in (k + 1..n - 1 - both).rev() {
         let (l, u) = (m.lower(j), m.upper(j));
-        up.step(m.diag(j), l * u, u, b[j], &mut ok);
+        up.step(m.diag(j), l * u, u, b[j]);
         (b[j], recip[j]) = (up.value, up.recip);
     }
     // row k, its left neighbour eliminated from above and its right one from below:
     // (p_k − u_k l_k / s_{k+1})·x_k = y_k − (u_k / s_{k+1})·z_{k+1}
     let (l, u) = (m.lower(k), m.upper(k));
     let pivot = 1.0 / down.recip - (u * l) * up.recip;
-    if !(ok && pivot > 0.0 && pivot < f64::INFINITY) {
+    // every pivot in (0, ∞): its reciprocal in (0, ∞), NaN failing both (checked in one
+    // vectorised pass after the chains, not on them)
+    let positive = |r: &f64| *r > 0.0 && *r < f64::INFINITY;
+    if !(recip.iter().all(positive) && positive(&pivot)) {
         return false;
     }
     let mut above = (down.value - (u * up.recip) * up.value) / pivot;
