@@ -307,6 +307,22 @@ impl Bands for SplineRows<'_> {
             self.x[i] - self.x[i - 1]
         }
     }
+
+    /// The entries of [`SplineRows::lower`], [`SplineRows::diag`] and [`SplineRows::upper`]
+    /// by the same operations, an interior row's two steps formed once.
+    #[inline]
+    fn row(&self, i: usize) -> [f64; 3] {
+        let x = self.x;
+        if i == 0 {
+            return [0.0, self.first.0, self.first.1];
+        }
+        if i + 1 == x.len() {
+            return [self.last.0, self.last.1, 0.0];
+        }
+        let w = &x[i - 1..i + 2];
+        let (h0, h1) = (w[1] - w[0], w[2] - w[1]);
+        [h1, 2.0 * (h0 + h1), h0]
+    }
 }
 
 /// SciPy's `dx` (`n − 1` steps) and `slope` (`n − 1` rows of `dim` secants `(y_{i+1} − y_i)/h_i`).

@@ -36,6 +36,17 @@ pub(crate) trait Bands {
     fn lower(&self, i: usize) -> f64;
     /// `du[i]`, the entry of row `i` right of the diagonal, `i < n − 1`.
     fn upper(&self, i: usize) -> f64;
+    /// Row `i` whole: `[dl[i − 1], d[i], du[i]]`, 0 for an entry beyond the matrix; a matrix
+    /// whose rows are formed where they are read forms the three at once here.
+    #[inline]
+    fn row(&self, i: usize) -> [f64; 3] {
+        let n = self.len();
+        [
+            if i > 0 { self.lower(i - 1) } else { 0.0 },
+            self.diag(i),
+            if i + 1 < n { self.upper(i) } else { 0.0 },
+        ]
+    }
 }
 
 /// Three stored bands (`dl`, `du` of `n − 1`, `d` of `n`) as [`Bands`].

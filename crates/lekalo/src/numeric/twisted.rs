@@ -85,33 +85,39 @@ pub(crate) fn solve_twisted(m: &impl Bands, b: &mut [f64], recip: &mut [f64]) ->
     debug_assert!(n >= 2 && b.len() == n && recip.len() == n, "lengths");
     // rows 0 … k downwards, n − 1 … k + 1 upwards: k downward steps, n − 2 − k upward ones
     let k = (n - 1) / 2;
-    let mut down = Sweep::start(m.diag(0), b[0]);
-    let mut up = Sweep::start(m.diag(n - 1), b[n - 1]);
+    let (first, last) = (m.row(0), m.row(n - 1));
+    let mut down = Sweep::start(first[1], b[0]);
+    let mut up = Sweep::start(last[1], b[n - 1]);
     recip[0] = down.recip;
     recip[n - 1] = up.recip;
+    // the entry of the row above that couples it to the next one down (`du`), and of the row
+    // below to the next one up (`dl`), carried from row to row
+    let (mut u, mut l) = (first[2], last[0]);
     let both = (n - 2 - k).min(k);
     for s in 0..both {
         let (i, j) = (s + 1, n - 2 - s);
-        let (l, u) = (m.lower(i - 1), m.upper(i - 1));
-        down.step(m.diag(i), l * u, l, b[i]);
-        let (l, u) = (m.lower(j), m.upper(j));
-        up.step(m.diag(j), l * u, u, b[j]);
+        let [li, di, ui] = m.row(i);
+        down.step(di, li * u, li, b[i]);
+        let [lj, dj, uj] = m.row(j);
+        up.step(dj, l * uj, uj, b[j]);
+        (u, l) = (ui, lj);
         (b[i], recip[i]) = (down.value, down.recip);
         (b[j], recip[j]) = (up.value, up.recip);
     }
     for i in both + 1..=k {
-        let (l, u) = (m.lower(i - 1), m.upper(i - 1));
-        down.step(m.diag(i), l * u, l, b[i]);
+        let [li, di, ui] = m.row(i);
+        down.step(di, li * u, li, b[i]);
+        u = ui;
         (b[i], recip[i]) = (down.value, down.recip);
     }
     for j in (k + 1..n - 1 - both).rev() {
-        let (l, u) = (m.lower(j), m.upper(j));
-        up.step(m.diag(j), l * u, u, b[j]);
+        let [lj, dj, uj] = m.row(j);
+        up.step(dj, l * uj, uj, b[j]);
+        l = lj;
         (b[j], recip[j]) = (up.value, up.recip);
     }
     // row k, its left neighbour eliminated from above and its right one from below:
     // (p_k − u_k l_k / s_{k+1})·x_k = y_k − (u_k / s_{k+1})·z_{k+1}
-    let (l, u) = (m.lower(k), m.upper(k));
     let pivot = 1.0 / down.recip - (u * l) * up.recip;
     // every pivot in (0, ∞): its reciprocal in (0, ∞), NaN failing both (checked in one
     // vectorised pass after the chains, not on them)
@@ -129,17 +135,17 @@ pub(crate) fn solve_twisted(m: &impl Bands, b: &mut [f64], recip: &mut [f64]) ->
     let rows_down = n - 1 - k;
     for s in 0..rows_up.min(rows_down) {
         let (i, j) = (k - 1 - s, k + 1 + s);
-        above = b[i] * recip[i] - (m.upper(i) * recip[i]) * above;
-        below = b[j] * recip[j] - (m.lower(j - 1) * recip[j]) * below;
+        above = b[i] * recip[i] - (m.row(i)[2] * recip[i]) * above;
+        below = b[j] * recip[j] - (m.row(j)[0] * recip[j]) * below;
         b[i] = above;
         b[j] = below;
     }
     for i in (0..k.saturating_sub(rows_down)).rev() {
-        above = b[i] * recip[i] - (m.upper(i) * recip[i]) * above;
+        above = b[i] * recip[i] - (m.row(i)[2] * recip[i]) * above;
         b[i] = above;
     }
     for j in k + 1 + rows_up..n {
-        below = b[j] * recip[j] - (m.lower(j - 1) * recip[j]) * below;
+        below = b[j] * recip[j] - (m.row(j)[0] * recip[j]) * below;
         b[j] = below;
     }
     true
