@@ -1,0 +1,857 @@
+"""SciPy users' code run through ``lekalo.scipy``: each test is a snippet written the way
+tutorials, notebooks and question-and-answer threads call ``scipy.interpolate``, as a function
+of the module ``si``. It runs once with ``scipy.interpolate`` and once with ``lekalo.scipy``
+(only the import differs) and the two results are compared: types (tuple, list, ndarray, numpy
+scalar), shapes, dtypes and values, the exception raised and the warnings given.
+
+Tolerances: where both compute the same mathematics (interpolation, least squares on given
+knots, evaluation of the same coefficients), values agree to rounding, 1e-12 relative with an
+absolute floor of 1e-12 times the data's size (the conditioning of the small banded systems
+here is far below 1e3). Where SciPy's FITPACK stops its smoothing iteration anywhere within
+0.001*s of s and lekalo within 0.001*s below s (docs/scipy.md), the same knots give fits whose
+values differ by what that difference in s moves them: 1e-3 relative to the data's size.
+"""
+
+import copy
+import pickle
+import warnings
+
+import numpy as np
+import pytest
+
+import lekalo.scipy as ls
+
+si_scipy = pytest.importorskip("scipy.interpolate")
+
+RTOL = 1e-12  # same mathematics, rounding only
+
+
+class Outcome:
+    """What one run of a snippet gave: its value or exception, and its warnings."""
+
+    def __init__(self, fn, module):
+        self.value = None
+        self.error = None
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            try:
+                self.value = fn(module)
+            except Exception as exc:  # the exception is part of the behaviour compared
+                self.error = exc
+        self.warnings = sorted({w.category.__name__ for w in caught})
+
+
+def compare(ref, got, rtol, scale, path="result"):
+    """Recursively compares SciPy's result ``ref`` with lekalo's ``got``: the same container
+    types and lengths, the same array shapes and dtypes, values within ``rtol`` relative and
+    ``rtol * scale`` absolute."""
+    if isinstance(ref, (tuple, list)):
+        assert type(got) is type(ref), f"{path}: {type(got).__name__} where SciPy gives {type(ref).__name__}"
+        assert len(got) == len(ref), f"{path}: length {len(got)} where SciPy gives {len(ref)}"
+        for i, (r, g) in enumerate(zip(ref, got)):
+            compare(r, g, rtol, scale, f"{path}[{i}]")
+    elif isinstance(ref, dict):
+        assert isinstance(got, dict) and set(got) == set(ref), path
+        for key in ref:
+            compare(ref[key], got[key], rtol, scale, f"{path}[{key!r}]")
+    elif isinstance(ref, np.ndarray):
+        assert isinstance(got, np.ndarray), f"{path}: {type(got).__name__} where SciPy gives ndarray"
+        assert got.shape == ref.shape, f"{path}: shape {got.shape} where SciPy gives {ref.shape}"
+        assert got.dtype == ref.dtype, f"{path}: dtype {got.dtype} where SciPy gives {ref.dtype}"
+        if ref.dtype.kind in "fc":
+            np.testing.assert_allclose(got, ref, rtol=rtol, atol=rtol * scale, equal_nan=True, err_msg=path)
+        else:
+            np.testing.assert_array_equal(got, ref, err_msg=path)
+    elif isinstance(ref, (bool, int, str, type(None))) and not isinstance(ref, np.generic):
+        assert type(got) is type(ref), f"{path}: {type(got).__name__} where SciPy gives {type(ref).__name__}"
+        assert got == ref, f"{path}: {got!r} where SciPy gives {ref!r}"
+    elif isinstance(ref, (float, complex, np.generic)):
+        assert type(got) is type(ref), f"{path}: {type(got).__name__} where SciPy gives {type(ref).__name__}"
+        np.testing.assert_allclose(got, ref, rtol=rtol, atol=rtol * scale, equal_nan=True, err_msg=path)
+    else:
+        raise TypeError(f"{path}: the snippet returns {type(ref).__name__}; return arrays or numbers")
+
+
+def same(fn, rtol=RTOL, scale=1.0, messages=False):
+    """Runs the snippet ``fn(si)`` with SciPy and with lekalo.scipy and compares the outcomes.
+    ``scale`` is the size of the data, for the absolute floor of the comparison."""
+    ref = Outcome(fn, si_scipy)
+    got = Outcome(fn, ls)
+    if ref.error is not None:
+        assert got.error is not None, f"SciPy raises {ref.error!r}; lekalo returns {got.value!r}"
+        assert isinstance(got.error, type(ref.error)), f"lekalo raises {got.error!r} where SciPy raises {ref.error!r}"
+    else:
+        assert got.error is None, f"lekalo raises {got.error!r} where SciPy returns"
+        compare(ref.value, got.value, rtol, scale)
+    assert got.warnings == ref.warnings, f"lekalo warns {got.warnings} where SciPy warns {ref.warnings}"
+    return ref, got
+
+
+def noisy(n=40, seed=0):
+    rng = np.random.default_rng(seed)
+    x = np.linspace(0, 10, n)
+    return x, np.sin(x) + 0.1 * rng.standard_normal(n)
+
+
+XS = np.linspace(-0.5, 10.5, 57)  # plotting grid, past both ends
+
+
+# ---------------------------------------------------------------- FITPACK's functions
+
+
+def test_splrep_splev_tutorial():
+    """splrep of a sampled sine, splev on a fine grid for plotting (the reference guide's example)."""
+
+    def snippet(si):
+        x = np.linspace(0, 10, 10)
+        y = np.sin(x)
+        tck = si.splrep(x, y)
+        x2 = np.linspace(0, 10, 200)
+        return tck, si.splev(x2, tck)
+
+    same(snippet)
+
+
+def test_splrep_smoothing_full_output():
+    """splrep(x, y, s=..., full_output=1) returns (tck, fp, ier, msg) on noisy data."""
+
+    def snippet(si):
+        x, y = noisy()
+        tck, fp, ier, msg = si.splrep(x, y, s=0.5, full_output=1)
+        return tck[0], tck[2], fp, ier, si.splev(XS, tck)
+
+    # FITPACK stops within 0.001*s of s on either side, lekalo within 0.001*s below it: the
+    # residual fp and the values differ by that much (module docstring).
+    same(snippet, rtol=1e-3)
+
+
+def test_splev_derivatives_and_ext_modes():
+    """splev(x, tck, der=n) and every ext= mode (0 extrapolate, 1 zeros, 2 raise, 3 const) past the data."""
+
+    def snippet(si):
+        x = np.arange(0.0, 10.0)
+        tck = si.splrep(x, np.cos(x))
+        out = [si.splev(XS, tck, der=d) for d in range(4)]
+        out += [si.splev(XS, tck, ext=e) for e in (0, 1, 3)]
+        return out
+
+    same(snippet, scale=10.0)
+
+    def raises(si):
+        x = np.arange(0.0, 10.0)
+        return si.splev(XS, si.splrep(x, np.cos(x)), ext=2)
+
+    same(raises)
+
+
+def test_splrep_lists_and_integers():
+    """splrep on Python lists of integers (data typed in by hand), k=2, evaluated at an integer list."""
+
+    def snippet(si):
+        x = [0, 3, 6, 9, 12, 15]
+        y = [5, 3, 8, 2, 7, 1]
+        tck = si.splrep(x, y, k=2)
+        return tck, si.splev([1, 2, 4, 14], tck)
+
+    same(snippet, scale=10.0)
+
+
+def test_splrep_periodic_per1():
+    """splrep(..., per=1) of one period of sampled data; the last y is not used."""
+
+    def snippet(si):
+        x = np.linspace(0, 2 * np.pi, 21)
+        y = np.sin(x) + 0.5 * np.cos(2 * x)
+        tck = si.splrep(x, y, per=1)
+        return tck, si.splev(np.linspace(-1, 8, 50), tck)
+
+    same(snippet)
+
+
+def test_splrep_given_knots_weights():
+    """splrep with interior knots t (task=-1, least squares) and weights 1/sigma."""
+
+    def snippet(si):
+        x, y = noisy(60, seed=1)
+        sigma = np.full_like(x, 0.1)
+        tck, fp, ier, msg = si.splrep(x, y, w=1 / sigma, t=[2.0, 4.0, 5.0, 6.0, 8.0], task=-1, full_output=True)
+        return tck, fp, ier, si.splev(XS, tck)
+
+    same(snippet)
+
+
+def test_splrep_default_s_with_weights():
+    """splrep with weights and s left at None: SciPy's default s = m - sqrt(2m)."""
+
+    def snippet(si):
+        x, y = noisy(50, seed=2)
+        tck = si.splrep(x, y, w=np.full(50, 10.0))
+        return tck[0], si.splev(XS, tck)
+
+    same(snippet, rtol=1e-3)  # smoothing condition: within 0.001*s (module docstring)
+
+
+def test_splint_sproot_spalde():
+    """Area under a fitted curve (splint), its zeros (sproot) and all derivatives at a point (spalde)."""
+
+    def snippet(si):
+        x = np.linspace(0.3, 10, 30)
+        tck = si.splrep(x, np.sin(x))
+        return si.splint(0, np.pi, tck), si.sproot(tck), si.spalde(2.5, tck), si.spalde([1.0, 2.0], tck)
+
+    same(snippet)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="rounding (not in differences.toml): the interpolant of sin on linspace(0, 10, 30) has "
+    "first coefficient exactly 0.0 in lekalo and 8.6e-19 in SciPy's splrep, so lekalo's sproot "
+    "reports the root at the left end x = 0 and SciPy's does not (also UnivariateSpline.roots)",
+)
+def test_sproot_zero_at_first_point():
+    """sproot of a sampled sine whose first sample is the zero sin(0)."""
+
+    def snippet(si):
+        x = np.linspace(0, 10, 30)
+        return si.sproot(si.splrep(x, np.sin(x)))
+
+    same(snippet)
+
+
+def test_splder_splantider():
+    """splder / splantider of a tck tuple, evaluated with splev; the pair is the identity."""
+
+    def snippet(si):
+        x = np.linspace(0, 10, 25)
+        tck = si.splrep(x, np.exp(-x / 3) * np.sin(x))
+        d = si.splder(tck)
+        a = si.splantider(tck, 2)
+        return d, a, si.splev(XS, d), si.splev(XS, si.splder(si.splantider(tck)))
+
+    same(snippet)
+
+
+def test_splprep_closed_curve():
+    """splprep([x, y], s=0, per=True) of a closed outline, splev on u_new gives a list of coordinates."""
+
+    def snippet(si):
+        phi = np.linspace(0, 2 * np.pi, 17)
+        r = 1 + 0.3 * np.cos(3 * phi)
+        x, y = r * np.cos(phi), r * np.sin(phi)
+        x[-1], y[-1] = x[0], y[0]
+        tck, u = si.splprep([x, y], s=0, per=True)
+        u_new = np.linspace(u.min(), u.max(), 100)
+        x_new, y_new = si.splev(u_new, tck)
+        return tck[0], tck[2], u, si.splev(u_new, tck), x_new, si.splev(u_new, tck, der=1)
+
+    same(snippet)
+
+
+def test_splprep_smoothing_default_s():
+    """splprep on noisy 3-D points with the default s (m - sqrt(2m)) and no u; the tck structure is a list."""
+
+    def snippet(si):
+        rng = np.random.default_rng(3)
+        t = np.linspace(0, 4 * np.pi, 60)
+        pts = [np.cos(t), np.sin(t), t / 5]
+        pts = [p + 0.01 * rng.standard_normal(t.size) for p in pts]
+        (t_knots, c, k), u = si.splprep(pts)
+        return type(c).__name__, len(c), k, u, si.splev(np.linspace(0, 1, 30), (t_knots, c, k))
+
+    same(snippet, rtol=1e-3)  # smoothing condition: within 0.001*s (module docstring)
+
+
+def test_splprep_full_output_and_list_structure():
+    """The question-and-answer thread's splprep call: s=3.0, k=3, nest=-1 on short integer data, tckp and u returned."""
+
+    def snippet(si):
+        x = np.array([0, 3, 6, 9, 12, 15])
+        y = np.array([0.530, 0.546, 0.586, 0.658, 0.727, 0.801])
+        tckp, u = si.splprep([x, y], s=3.0, k=3, nest=-1)
+        return tckp, u, si.splev(np.linspace(0, 1, 40), tckp)
+
+    same(snippet, scale=15.0)
+
+
+def test_insert_knot_tck():
+    """insert(x, tck) adds a knot to a tck tuple without changing the curve."""
+
+    def snippet(si):
+        x = np.linspace(0, 10, 12)
+        tck = si.splrep(x, np.sqrt(x + 1))
+        tck2 = si.insert(3.3, tck, m=2)
+        return tck2, si.splev(XS, tck2)
+
+    same(snippet)
+
+
+# ---------------------------------------------------------------- the FITPACK classes
+
+
+def test_univariatespline_default_s():
+    """UnivariateSpline(x, y) with s=None (s = len(w)), called on a grid, knots, coefficients, residual."""
+
+    def snippet(si):
+        x, y = noisy(80, seed=4)
+        spl = si.UnivariateSpline(x, 10 * y)
+        return spl(XS), spl.get_knots(), spl.get_residual(), spl.integral(1, 9)
+
+    same(snippet, rtol=1e-3, scale=10.0)  # smoothing condition: within 0.001*s (module docstring)
+
+
+def test_univariatespline_s0_derivative_roots():
+    """UnivariateSpline(..., s=0): derivative(), antiderivative(), roots(), nu= call, derivatives(x)."""
+
+    def snippet(si):
+        x = np.linspace(0, 10, 40)
+        spl = si.UnivariateSpline(x, np.sin(x), s=0)
+        d = spl.derivative()
+        a = spl.antiderivative()
+        return (spl(XS, nu=1), d(XS), a(XS), spl.roots(), d.roots(), spl.derivatives(2.0),
+                spl.get_coeffs(), float(spl.integral(0, np.pi)))
+
+    same(snippet)
+
+
+def test_univariatespline_ext_modes():
+    """UnivariateSpline ext= 'extrapolate', 'zeros', 'raise', 'const' (and integers), also passed to __call__."""
+
+    def snippet(si):
+        x = np.linspace(1, 9, 20)
+        y = np.log(x)
+        return [si.UnivariateSpline(x, y, s=0, ext=e)(XS) for e in ("extrapolate", "zeros", "const", 0, 1, 3)] + [
+            si.UnivariateSpline(x, y, s=0)(XS, ext="const")
+        ]
+
+    same(snippet)
+
+    def raises(si):
+        x = np.linspace(1, 9, 20)
+        return si.UnivariateSpline(x, np.log(x), s=0, ext="raise")(XS)
+
+    same(raises)
+
+
+def test_univariatespline_weights_bbox():
+    """UnivariateSpline with weights from error bars, bbox wider than the data, k=4."""
+
+    def snippet(si):
+        x, y = noisy(50, seed=5)
+        spl = si.UnivariateSpline(x, y, w=np.full(50, 1 / 0.1), bbox=[-1, 11], k=4, s=50)
+        return spl.get_knots(), spl(XS)
+
+    same(snippet, rtol=1e-3)  # smoothing condition: within 0.001*s (module docstring)
+
+
+def test_univariatespline_set_smoothing_factor():
+    """The tutorial's UnivariateSpline, then spl.set_smoothing_factor(0.5) to smooth more."""
+
+    def snippet(si):
+        rng = np.random.default_rng(0)
+        x = np.linspace(-3, 3, 50)
+        y = np.exp(-(x**2)) + 0.1 * rng.standard_normal(50)
+        spl = si.UnivariateSpline(x, y)
+        first = spl(np.linspace(-3, 3, 100))
+        spl.set_smoothing_factor(0.5)
+        return first, spl(np.linspace(-3, 3, 100)), spl.get_knots()
+
+    same(snippet, rtol=1e-3)  # smoothing condition: within 0.001*s (module docstring)
+
+
+def test_interpolatedunivariatespline_scalar_and_decreasing():
+    """InterpolatedUnivariateSpline called with a scalar gives a 0-d array; decreasing x is refused."""
+
+    def snippet(si):
+        x = np.linspace(0, 5, 11)
+        spl = si.InterpolatedUnivariateSpline(x, x**3 - 2 * x, k=3)
+        v = spl(2.5)
+        return v, type(v).__name__, spl(2.5, nu=2), spl.integral(0, 5)
+
+    same(snippet, scale=125.0)
+
+    def decreasing(si):
+        x = np.linspace(5, 0, 11)
+        return si.InterpolatedUnivariateSpline(x, x**2)(1.0)
+
+    same(decreasing)
+
+
+def test_lsqunivariatespline_knots():
+    """LSQUnivariateSpline with interior knots from np.linspace, and its knots/coefficients/residual."""
+
+    def snippet(si):
+        x, y = noisy(100, seed=6)
+        t = np.linspace(1, 9, 7)
+        spl = si.LSQUnivariateSpline(x, y, t, k=3)
+        return spl(XS), spl.get_knots(), spl.get_coeffs(), float(spl.get_residual())
+
+    same(snippet)
+
+
+def test_univariatespline_float32_data():
+    """float32 measurements (from a file) go into UnivariateSpline; the result dtype is SciPy's."""
+
+    def snippet(si):
+        x, y = noisy(30, seed=7)
+        spl = si.UnivariateSpline(x.astype(np.float32), y.astype(np.float32), s=0)
+        return spl(XS.astype(np.float32)), spl(np.float32(2.0))
+
+    same(snippet)
+
+
+# ---------------------------------------------------------------- make_interp_spline and BSpline
+
+
+def test_interp1d_cubic_replacement():
+    """interp1d(x, y, kind='cubic') replaced by make_interp_spline(x, y, k=3): SciPy's own interp1d gives the values."""
+    x = np.linspace(0, 10, 15)
+    y = np.cos(x**2 / 9.0)
+    xs = np.linspace(0, 10, 101)
+    ref = si_scipy.interp1d(x, y, kind="cubic")(xs)
+    got = ls.make_interp_spline(x, y, k=3)(xs)
+    np.testing.assert_allclose(got, ref, rtol=RTOL, atol=RTOL)  # the same not-a-knot interpolant
+    ref1 = si_scipy.interp1d(x, y)(xs)
+    got1 = ls.make_interp_spline(x, y, k=1)(xs)
+    np.testing.assert_allclose(got1, ref1, rtol=RTOL, atol=RTOL)
+
+
+def test_make_interp_spline_bc_types():
+    """make_interp_spline with bc_type 'natural', 'clamped', explicit derivative pairs, and k=5."""
+
+    def snippet(si):
+        x = np.linspace(0, 2, 12)
+        y = np.exp(x)
+        out = []
+        for bc in ("natural", "clamped", ([(1, 1.0)], [(1, np.exp(2))]), ([(2, 1.0)], [(1, 7.0)]), "not-a-knot", None):
+            b = si.make_interp_spline(x, y, k=3, bc_type=bc)
+            out += [b.t, b.c, b(np.linspace(-0.2, 2.2, 30))]
+        out.append(si.make_interp_spline(x, y, k=5)(np.linspace(0, 2, 30)))
+        return out
+
+    same(snippet, scale=10.0)
+
+
+def test_make_interp_spline_axis1_2d():
+    """Several signals as rows of a 2-D y interpolated along axis=1; the call returns rows too."""
+
+    def snippet(si):
+        x = np.linspace(0, 1, 9)
+        y = np.vstack([np.sin(3 * x), np.cos(3 * x), x**2])
+        b = si.make_interp_spline(x, y, axis=1)
+        return b(np.linspace(0, 1, 20)), b.c.shape, b.axis, b.derivative()(0.5)
+
+    same(snippet)
+
+
+def test_make_interp_spline_complex():
+    """Complex y (a phasor) interpolated by make_interp_spline, values and derivative complex."""
+
+    def snippet(si):
+        x = np.linspace(0, 3, 10)
+        y = np.exp(1j * x)
+        b = si.make_interp_spline(x, y)
+        return b(np.linspace(0, 3, 31)), b(np.linspace(0, 3, 31), nu=1), b.derivative()(1.5), b.antiderivative()(x)
+
+    same(snippet)
+
+
+def test_make_interp_spline_complex_integrate():
+    """BSpline.integrate of a complex interpolant: SciPy 1.17 raises ValueError, lekalo integrates
+    the real and imaginary parts (the value SciPy gives for each part on its own)."""
+    x = np.linspace(0, 3, 10)
+    with pytest.raises(ValueError):
+        si_scipy.make_interp_spline(x, np.exp(1j * x)).integrate(0, 3)
+    got = ls.make_interp_spline(x, np.exp(1j * x)).integrate(0, 3)
+    ref = si_scipy.make_interp_spline(x, np.cos(x)).integrate(0, 3) + 1j * si_scipy.make_interp_spline(x, np.sin(x)).integrate(0, 3)
+    np.testing.assert_allclose(got, ref, rtol=RTOL)  # the same interpolant, integrated part by part
+
+
+def test_bspline_by_hand_extrapolate():
+    """BSpline(t, c, k) from hand-written knots; extrapolate=False gives NaN outside, 'periodic' wraps."""
+
+    def snippet(si):
+        t = [0, 0, 0, 0, 1, 2, 3, 3, 3, 3]
+        c = [-1, 2, 0, -1, 1, 3]
+        k = 3
+        xs = np.linspace(-1, 4, 26)
+        return (si.BSpline(t, c, k)(xs), si.BSpline(t, c, k, extrapolate=False)(xs),
+                si.BSpline(t, c, k, extrapolate="periodic")(xs), si.BSpline(t, c, k)(xs, extrapolate=False))
+
+    same(snippet)
+
+
+def test_bspline_calculus():
+    """BSpline derivative(), antiderivative(), integrate() with extrapolate, nu= in the call."""
+
+    def snippet(si):
+        x = np.linspace(0, np.pi, 10)
+        b = si.make_interp_spline(x, np.sin(x))
+        return (b.derivative(2)(x), b.antiderivative()(x), b.integrate(0, np.pi), b.integrate(-1, 4),
+                b.integrate(-1, 4, extrapolate=False), b(x, nu=3), b.derivative().k)
+
+    same(snippet)
+
+
+def test_bspline_basis_element_design_matrix():
+    """BSpline.basis_element for plotting one basis function; design_matrix for a hand-made least squares."""
+
+    def snippet(si):
+        b = si.BSpline.basis_element([0, 1, 2, 3])
+        xs = np.linspace(0, 3, 13)
+        t = np.r_[[0.0] * 3, np.linspace(0, 1, 5), [1.0] * 3]
+        m = si.BSpline.design_matrix(np.linspace(0, 1, 9), t, 3)
+        return b(xs), b.t, m.toarray(), m.shape
+
+    same(snippet)
+
+
+def test_make_lsq_spline_and_make_smoothing_spline():
+    """make_lsq_spline with knots built by np.r_ and make_smoothing_spline with a given lam."""
+
+    def snippet(si):
+        x, y = noisy(60, seed=8)
+        t = np.r_[(x[0],) * 4, [2.5, 5.0, 7.5], (x[-1],) * 4]
+        b = si.make_lsq_spline(x, y, t, k=3)
+        s = si.make_smoothing_spline(x, y, lam=0.1)
+        return b.c, b(XS), s(XS)
+
+    same(snippet, rtol=1e-10)  # the penalised system of make_smoothing_spline is solved to rounding of its condition (~1e4)
+
+
+def test_make_smoothing_spline_gcv():
+    """make_smoothing_spline(x, y) with lam=None: the GCV choice of the smoothing parameter."""
+
+    def snippet(si):
+        x, y = noisy(200, seed=9)
+        return si.make_smoothing_spline(x, y)(x)
+
+    # Both minimise the same GCV score by different searches (docs/scipy.md): on noisy data with
+    # one minimum they agree to the minimisers' tolerance, about 1e-5 of lam; values to 1e-4.
+    same(snippet, rtol=1e-4)
+
+
+def test_make_splrep_make_splprep():
+    """SciPy's newer make_splrep(x, y, s=...) returning a BSpline, and make_splprep for a curve."""
+
+    def snippet(si):
+        x, y = noisy(50, seed=10)
+        b = si.make_splrep(x, y, s=0.4)
+        spl, u = si.make_splprep([np.cos(x / 2), np.sin(x / 2)], s=0.01)
+        return b.t, b(XS), u, spl(np.linspace(0, 1, 20))
+
+    same(snippet, rtol=1e-3)  # smoothing condition: within 0.001*s (module docstring)
+
+
+def test_bspline_check_finite():
+    """make_interp_spline refuses NaN data with check_finite=True (the default)."""
+
+    def snippet(si):
+        x = np.arange(6.0)
+        y = np.array([0, 1, np.nan, 2, 3, 4.0])
+        return si.make_interp_spline(x, y)
+
+    same(snippet)
+
+
+# ---------------------------------------------------------------- the piecewise cubics
+
+
+def test_cubicspline_bc_types_and_calculus():
+    """CubicSpline with bc_type 'clamped', 'natural', 'not-a-knot', ((1, 0), (2, 0)); nu=, derivative, integrate, roots."""
+
+    def snippet(si):
+        x = np.arange(10)
+        y = np.sin(x)
+        out = []
+        for bc in ("not-a-knot", "clamped", "natural", ((1, 0.0), (2, 0.0))):
+            cs = si.CubicSpline(x, y, bc_type=bc)
+            out += [cs(XS), cs(XS, 1), cs(XS, nu=2), cs.derivative()(XS), cs.antiderivative()(XS),
+                    cs.integrate(0, 9), cs.roots(), cs.solve(0.5), cs.c, cs.x]
+        return out
+
+    same(snippet, scale=10.0)
+
+
+def test_cubicspline_periodic_and_extrapolate():
+    """CubicSpline(..., bc_type='periodic') of a closed signal, extrapolate='periodic' and extrapolate=False."""
+
+    def snippet(si):
+        theta = np.linspace(0, 2 * np.pi, 9)
+        y = np.c_[np.cos(theta), np.sin(theta)]
+        cs = si.CubicSpline(theta, y, bc_type="periodic")
+        xs = np.linspace(-1, 8, 40)
+        return (cs(xs), cs(xs, extrapolate=False),
+                si.CubicSpline(theta, y[:, 0], extrapolate=False)(xs), cs.integrate(0, 10), cs.extrapolate)
+
+    same(snippet)
+
+
+def test_cubicspline_axis1_float32_int():
+    """CubicSpline of float32 rows along axis=1, and of integer arrays; dtypes as SciPy's."""
+
+    def snippet(si):
+        x = np.arange(6)
+        y = (np.arange(18).reshape(3, 6) ** 2).astype(np.float32)
+        cs = si.CubicSpline(x, y, axis=1)
+        ci = si.CubicSpline(np.array([0, 1, 2, 4]), np.array([0, 1, 4, 16]))
+        return cs(np.linspace(0, 5, 11)), cs.c.dtype.name, ci(np.array([0, 1, 3])), ci(3), ci.c
+
+    same(snippet, scale=300.0)
+
+
+def test_cubicspline_decreasing_x():
+    """CubicSpline with x decreasing (a profile measured from the far end)."""
+
+    def snippet(si):
+        x = np.linspace(10, 0, 11)
+        cs = si.CubicSpline(x, np.sqrt(x + 1))
+        return cs(XS), cs.x, cs.integrate(0, 10)
+
+    same(snippet, scale=4.0)
+
+
+def test_cubicspline_complex():
+    """CubicSpline of complex samples (a complex frequency response)."""
+
+    def snippet(si):
+        f = np.linspace(0, 5, 12)
+        h = 1 / (1 + 1j * f)
+        cs = si.CubicSpline(f, h)
+        return cs(np.linspace(0, 5, 30)), cs(2.5, 1), cs.integrate(0, 5)
+
+    same(snippet)
+
+
+def test_pchip_monotone_and_extrapolate():
+    """PchipInterpolator for monotone data with extrapolate=False, pchip_interpolate with der=, list inputs."""
+
+    def snippet(si):
+        x = [0, 1, 2, 3, 4, 5, 6]
+        y = [0, 0.1, 0.1, 0.5, 2.0, 2.1, 3.0]
+        p = si.PchipInterpolator(x, y, extrapolate=False)
+        xs = np.linspace(-1, 7, 33)
+        return p(xs), si.PchipInterpolator(x, y)(xs), si.pchip_interpolate(x, y, xs, der=1), si.pchip_interpolate(x, y, xs, der=[0, 2]), p.derivative()(2.5)
+
+    same(snippet, scale=3.0)
+
+
+def test_akima_and_makima():
+    """Akima1DInterpolator, default and method='makima', extrapolate=True, on data with a flat stretch."""
+
+    def snippet(si):
+        x = np.arange(11.0)
+        y = np.array([0, 0, 0, 0.5, 0.4, 5.8, 5.9, 6.0, 6.0, 6.0, 6.5])
+        a = si.Akima1DInterpolator(x, y)
+        m = si.Akima1DInterpolator(x, y, method="makima", extrapolate=True)
+        return a(XS), m(XS), a(XS, nu=1), m.integrate(0, 10)
+
+    same(snippet, scale=6.0)
+
+
+def test_cubichermite_spline():
+    """CubicHermiteSpline(x, y, dydx) from positions and velocities of a trajectory."""
+
+    def snippet(si):
+        t = np.linspace(0, 2, 7)
+        pos = np.c_[np.cos(t), np.sin(t)]
+        vel = np.c_[-np.sin(t), np.cos(t)]
+        h = si.CubicHermiteSpline(t, pos, vel)
+        return h(np.linspace(0, 2, 25)), h(1.0, 1), h.integrate(0, 2)
+
+    same(snippet)
+
+
+def test_ppoly_from_spline_and_from_power_basis():
+    """PPoly.from_spline(tck) and BSpline.from_power_basis(CubicSpline) conversions."""
+
+    def snippet(si):
+        x = np.linspace(0, 4, 9)
+        tck = si.splrep(x, x * np.exp(-x))
+        p = si.PPoly.from_spline(tck)
+        b = si.BSpline.from_power_basis(si.CubicSpline(x, np.cos(x)))
+        return p(XS / 2.5), p.roots(), b.t, b.c, b(x)
+
+    same(snippet)
+
+
+# ---------------------------------------------------------------- surfaces and grids
+
+
+def test_rectbivariatespline_grid_ev():
+    """RectBivariateSpline on a meshgrid: grid call, ev at scattered points, grid=False, dx/dy, integral."""
+
+    def snippet(si):
+        x = np.linspace(0, 4, 9)
+        y = np.linspace(-2, 2, 11)
+        X, Y = np.meshgrid(x, y, indexing="ij")
+        Z = np.sin(X) * np.exp(-(Y**2))
+        spl = si.RectBivariateSpline(x, y, Z)
+        xi = np.array([0.3, 1.7, 3.9])
+        yi = np.array([-1.5, 0.0, 1.1])
+        return (spl(np.linspace(0, 4, 5), np.linspace(-2, 2, 6)), spl.ev(xi, yi), spl(xi, yi, grid=False),
+                spl(xi, yi, dx=1, grid=False), spl.ev(xi, yi, dy=1), spl.integral(0, 4, -2, 2),
+                spl(1.0, 1.0), spl.get_knots()[0])
+
+    same(snippet)
+
+
+def test_rectbivariatespline_smoothed_lists():
+    """RectBivariateSpline with s>0 on noisy image data given as Python lists, kx=ky=2, bbox."""
+
+    def snippet(si):
+        rng = np.random.default_rng(11)
+        x = list(range(12))
+        y = list(range(10))
+        Z = (np.add.outer(np.arange(12.0), np.arange(10.0)) / 5 + 0.1 * rng.standard_normal((12, 10))).tolist()
+        spl = si.RectBivariateSpline(x, y, Z, kx=2, ky=2, s=1.0, bbox=[-1, 12, -1, 10])
+        return spl(np.arange(12), np.arange(10)), spl.get_knots(), float(spl.get_residual())
+
+    same(snippet, rtol=1e-3, scale=4.0)  # smoothing condition: within 0.001*s (module docstring)
+
+
+def test_bisplrep_bisplev():
+    """bisplrep on scattered samples of a surface, bisplev on a grid and with dx= (the tutorial's pattern, data without symmetry)."""
+
+    def snippet(si):
+        x, y = np.mgrid[-1:1:15j, -1:1:15j]
+        z = (x + 0.7 * y) * np.exp(-6.0 * (x * x + 1.3 * y * y))
+        tck = si.bisplrep(x, y, z, s=0)
+        xn = np.linspace(-1, 1, 7)
+        return tck[0], tck[1], tck[4], si.bisplev(xn, xn, tck), si.bisplev(xn, xn, tck, dx=1), si.bisplev(0.2, 0.3, tck)
+
+    same(snippet)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="needs Rust (not in differences.toml): the tie-breaking of test_bisplrep_tutorial_interpolation "
+    "with smoothing: SciPy's tx [-0.265, -0.075, 0], lekalo's [-0.370, 0, 0.411]; lekalo.scipy.bisplrep "
+    "of the points in reversed order gives SciPy's knots exactly",
+)
+def test_bisplrep_smoothed_tutorial_surface():
+    """bisplrep(x, y, z, s=...) of SciPy's tutorial surface (x + y) exp(-6 (x^2 + y^2)) with smoothing."""
+
+    def snippet(si):
+        x, y = np.mgrid[-1:1:15j, -1:1:15j]
+        z = (x + y) * np.exp(-6.0 * (x * x + y * y))
+        tck = si.bisplrep(x, y, z, s=0.05)
+        xn = np.linspace(-1, 1, 7)
+        return tck[0], tck[1], si.bisplev(xn, xn, tck)
+
+    same(snippet, rtol=1e-3)  # smoothing condition: within 0.001*s (module docstring)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="needs Rust (not in differences.toml): on SciPy's tutorial surface, symmetric under "
+    "(x, y) -> (-y, -x), lekalo's surfit knots are SciPy's mirrored (tx = -ty[::-1] of SciPy's); "
+    "its knot choice breaks ties in the opposite data order: lekalo.scipy.bisplrep of the "
+    "points in reversed order gives SciPy's knots exactly",
+)
+def test_bisplrep_tutorial_interpolation():
+    """SciPy's tutorial: bisplrep(x, y, z, s=0) on mgrid[-1:1:20j, -1:1:20j], bisplev on a finer grid."""
+
+    def snippet(si):
+        x, y = np.mgrid[-1:1:20j, -1:1:20j]
+        z = (x + y) * np.exp(-6.0 * (x * x + y * y))
+        tck = si.bisplrep(x, y, z, s=0)
+        xn = np.linspace(-1, 1, 7)
+        return tck[0], tck[1], tck[4], si.bisplev(xn, xn, tck), si.bisplev(xn, xn, tck, dx=1), si.bisplev(0.2, 0.3, tck)
+
+    same(snippet)
+
+
+def test_smooth_and_lsq_bivariate_spline():
+    """SmoothBivariateSpline of scattered points and LSQBivariateSpline with chosen knots, ev at points."""
+
+    def snippet(si):
+        rng = np.random.default_rng(12)
+        x = rng.uniform(0, 1, 200)
+        y = rng.uniform(0, 1, 200)
+        z = np.cos(3 * x) * y + 0.01 * rng.standard_normal(200)
+        sm = si.SmoothBivariateSpline(x, y, z, s=200 * 0.01**2)
+        lsq = si.LSQBivariateSpline(x, y, z, [0.3, 0.6], [0.5], kx=3, ky=3)
+        p = np.array([0.25, 0.5, 0.75])
+        return sm.ev(p, p), lsq.ev(p, p), lsq.get_coeffs(), lsq(p, p)
+
+    same(snippet, rtol=1e-3)  # smoothing condition: within 0.001*s (module docstring)
+
+
+def ndbspl_snippet(si, **solver):
+    """make_ndbspl on a 3-D grid (the cubic RegularGridInterpolator replacement) evaluated at an (n, 3) array."""
+    g = [np.linspace(0, 1, 6), np.linspace(0, 2, 7), np.linspace(-1, 1, 5)]
+    X = np.meshgrid(*g, indexing="ij")
+    v = np.sin(X[0]) + X[1] ** 2 * X[2]
+    # make_ndbspl is not exported by scipy.interpolate 1.17; users import it from its module
+    make_ndbspl = getattr(si, "make_ndbspl", None) or __import__("scipy.interpolate._ndbspline", fromlist=["x"]).make_ndbspl
+    nd = make_ndbspl(g, v, k=3, **solver)
+    nd = si.NdBSpline(nd.t, nd.c, 3)  # rebuilt by the public class, as from saved knots
+    pts = np.array([[0.1, 0.5, 0.3], [0.9, 1.9, -0.7], [0.5, 1.0, 0.0]])
+    d = nd.derivative((1, 0, 0))
+    return nd(pts), nd(pts, nu=(0, 1, 1)), [ti.copy() for ti in nd.t], d(pts), type(nd.t).__name__
+
+
+def test_make_ndbspl_direct_solver():
+    """make_ndbspl(points, values, k=3, solver=spsolve): the grid interpolant solved directly."""
+    from scipy.sparse.linalg import spsolve
+
+    same(lambda si: ndbspl_snippet(si, solver=spsolve), scale=4.0)
+
+
+def test_make_ndbspl_default_solver():
+    """make_ndbspl(points, values, k=3) with SciPy's default iterative solver (gcrotmk)."""
+    # SciPy's gcrotmk stops at a relative residual of 1e-5 (its default rtol); lekalo solves the
+    # same system exactly (differences.toml, test_solver_err_not_converged): the values differ
+    # by that much times the condition of the collocation matrix (about 10 here).
+    same(ndbspl_snippet, rtol=1e-4, scale=4.0)
+
+
+# ---------------------------------------------------------------- objects as users keep them
+
+
+def test_pickle_and_deepcopy():
+    """Fitted splines saved with pickle and duplicated with copy.deepcopy evaluate as the originals."""
+
+    def snippet(si):
+        x = np.linspace(0, 5, 20)
+        y = np.tanh(x - 2)
+        objs = [si.make_interp_spline(x, y), si.CubicSpline(x, y), si.UnivariateSpline(x, y, s=0),
+                si.PchipInterpolator(x, y), si.RectBivariateSpline(x, x, np.outer(y, y))]
+        out = []
+        for o in objs[:4]:
+            out += [pickle.loads(pickle.dumps(o))(XS / 2), copy.deepcopy(o)(XS / 2)]
+        r = objs[4]
+        out += [pickle.loads(pickle.dumps(r))(x, x), copy.deepcopy(r).ev(x, x)]
+        return out
+
+    same(snippet)
+
+
+def test_np_vectorize_and_scalar_loops():
+    """A spline used inside np.vectorize and in a Python loop of scalars (float(spl(v)))."""
+
+    def snippet(si):
+        x = np.linspace(0, 5, 20)
+        spl = si.make_interp_spline(x, np.cos(x))
+        us = si.UnivariateSpline(x, np.cos(x), s=0)
+        f = np.vectorize(lambda v: spl(v) * 2)
+        g = np.vectorize(us)
+        loop = [float(spl(v)) for v in np.linspace(0, 5, 7)]
+        return f(np.linspace(0, 5, 7)), g(np.linspace(0, 5, 7)), loop, type(spl(1.0)).__name__, spl(1.0).shape
+
+    same(snippet)
+
+
+def test_plotting_prep_shapes():
+    """Plot preparation: xs = np.linspace(x.min(), x.max(), 500) evaluated by every 1-D interpolator, 1-D results of length 500."""
+
+    def snippet(si):
+        x = np.array([1.0, 2.0, 4.0, 5.0, 7.0, 8.0])
+        y = np.array([2.0, 3.0, 2.5, 4.0, 3.0, 1.0])
+        xs = np.linspace(x.min(), x.max(), 500)
+        return [f(xs) for f in (si.CubicSpline(x, y), si.PchipInterpolator(x, y), si.Akima1DInterpolator(x, y),
+                                si.make_interp_spline(x, y), si.InterpolatedUnivariateSpline(x, y))] + [
+            si.splev(xs, si.splrep(x, y))
+        ]
+
+    same(snippet, scale=4.0)
