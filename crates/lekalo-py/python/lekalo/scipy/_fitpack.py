@@ -343,8 +343,10 @@ def splprep(
     """``scipy.interpolate.splprep``: the parametric spline of FITPACK's ``parcur``/``clocur``
     (``per=1``) through or near the points ``x`` (``(dim, m)``), lekalo's ``make_splprep`` and
     ``fit_closed`` on FITPACK's knots; with knots ``t`` (``task=-1``) lekalo's ``make_lsq_spline``
-    on their interior knots, the end knots at ``ub`` and ``ue``. Returns ``([t, [c_0, …], k], u)`` (with ``fp``, ``ier``,
-    ``msg`` for ``full_output``)."""
+    on their interior knots, the end knots at ``ub`` and ``ue``. ``ub``/``ue`` are read with ``u``
+    only, as FITPACK reads them; beyond the ends of ``u`` they take the end knots of the
+    interpolating curve (``s = 0``), and are not available with ``s > 0``. Returns
+    ``([t, [c_0, …], k], u)`` (with ``fp``, ``ier``, ``msg`` for ``full_output``)."""
     x = np.array(np.atleast_1d(x), dtype=np.float64)
     idim, m = x.shape
     if per:
@@ -366,8 +368,29 @@ def splprep(
         raise TypeError("m > k must hold")
     if task == 1 or (per and (t is not None or task == -1)):
         raise NotImplementedError("lekalo.scipy.splprep: task=1, and t with per=1, are not available yet")
-    if t is None and (ub is not None or ue is not None):
-        raise NotImplementedError("lekalo.scipy.splprep: ub/ue without t are not available yet")
+    if u is None or per:
+        # FITPACK reads ub/ue only with given parameters u: parcur computes u itself on [0, 1]
+        # (ub = 0, ue = 1) and clocur takes no interval, so SciPy ignores them here
+        ub = ue = None
+    elif ub is not None or ue is not None:
+        u0, u1 = float(np.asarray(u, dtype=np.float64)[0]), float(np.asarray(u, dtype=np.float64)[-1])
+        ub = u0 if ub is None else float(ub)
+        ue = u1 if ue is None else float(ue)
+        if ub > u0 or ue < u1:
+            # FITPACK's parcur: ub <= u[0] and ue >= u[-1] must hold (ier = 10)
+            raise ValueError("Invalid inputs.")
+        if ub == u0 and ue == u1:
+            ub = ue = None  # the interval of the data: the default
+        elif t is None and s == 0:
+            # FITPACK's interpolating curve (fppara with s = 0): the interior knots at the
+            # parameters (odd k) or between them (even k), the end knots at ub and ue, so the
+            # least squares on these knots below
+            uu0 = np.asarray(u, dtype=np.float64)
+            j = k // 2 + 1
+            inner = uu0[j : m - k - 1 + j] if k % 2 else 0.5 * (uu0[j : m - k - 1 + j] + uu0[j - 1 : m - k - 2 + j])
+            t = np.r_[(ub,) * (k + 1), inner, (ue,) * (k + 1)]
+        elif t is None:
+            raise NotImplementedError("lekalo.scipy.splprep: ub/ue beyond the ends of u with s > 0 are not available yet")
     pts = np.ascontiguousarray(x.T)
     if u is None and np.any(np.all(pts[1:] == pts[:-1], axis=1)):
         # two consecutive points coincide: the chord-length parameters do not increase
