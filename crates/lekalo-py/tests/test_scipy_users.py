@@ -1359,3 +1359,64 @@ def test_splprep_single_coordinate_and_splev_der():
         return tck[0], tck[1], u, si.splev(np.linspace(0, 1, 7), tck, der=1)
 
     same(snippet)
+
+
+def test_fwhm_from_spline_roots():
+    """Full width at half maximum: UnivariateSpline(x, y - y.max()/2, s=0).roots() unpacked as r1, r2 (a peak profile)."""
+
+    def snippet(si):
+        x = np.linspace(-5, 5, 41)
+        y = np.exp(-x**2 / 2.0) + 0.05
+        r1, r2 = si.UnivariateSpline(x, y - y.max() / 2, s=0).roots()
+        peak = si.UnivariateSpline(x, y, s=0).derivative().roots()
+        return r2 - r1, r1, peak
+
+    same(snippet, scale=5.0)
+
+
+def test_rectbivariatespline_uint8_image_and_masked():
+    """RectBivariateSpline of an 8-bit image (cv2.imread gives uint8) and of a masked array read from netCDF."""
+
+    def snippet(si):
+        img = ((np.add.outer(np.arange(16), np.arange(12) ** 1.5) * 3) % 256).astype(np.uint8)
+        sp = si.RectBivariateSpline(np.arange(16), np.arange(12), img)
+        z = np.ma.masked_array(np.sin(np.add.outer(np.linspace(0, 1, 9), np.linspace(0, 2, 10))))
+        sm = si.RectBivariateSpline(np.linspace(0, 1, 9), np.linspace(0, 2, 10), z)
+        xi = np.linspace(0, 15, 7)
+        yi = np.linspace(0, 11, 5)
+        return sp(xi, yi), sp.ev(xi[:5], yi), sm(0.33, 1.21), sm.ev([0.1, 0.9], [0.1, 1.9])
+
+    same(snippet, scale=256.0)
+
+
+def test_interp2d_transition_guide():
+    """SciPy's interp2d transition guide: RectBivariateSpline(x, y, z.T) for the regular grid, bisplrep(kx=1, ky=1) for scattered data."""
+
+    def snippet(si):
+        x = np.arange(-2.01, 2.01, 0.25)
+        y = np.arange(-2.01, 3.01, 0.25)
+        xx, yy = np.meshgrid(x, y)
+        z = np.sin(xx**2 + 2.0 * yy**2)
+        r = si.RectBivariateSpline(x, y, z.T, kx=3, ky=3, s=0)
+        xn = np.linspace(-2, 2, 9)
+        yn = np.linspace(-2, 3, 11)
+        small = si.RectBivariateSpline(np.array([0.0, 0.60, 1.0]), np.array([0.0, 0.25, 0.80, 1.0]),
+                                       np.array([[1.4, 6.5, 1.5, 1.8], [8.9, 7.3, 1.1, 1.09], [4.5, 9.2, 1.8, 1.2]]),
+                                       kx=2, ky=2, s=0)
+        return r(xn, yn).T, small([0.60], [0.25]), small([0.25], [0.60])
+
+    same(snippet, scale=10.0)
+
+
+def test_bisplrep_linear_scattered():
+    """bisplrep(x, y, z, kx=1, ky=1, s=0) of scattered measurements (interp2d's linear scattered path), bisplev on a grid."""
+
+    def snippet(si):
+        rng = np.random.default_rng(19)
+        x = rng.uniform(0, 4, 60)
+        y = rng.uniform(0, 3, 60)
+        z = np.hypot(x - 2, y - 1.5)
+        tck, fp, ier, msg = si.bisplrep(x, y, z, kx=1, ky=1, s=0, full_output=1)
+        return tck[0].shape, tck[1].shape, ier, si.bisplev(np.linspace(0.5, 3.5, 4), np.linspace(0.5, 2.5, 3), tck)
+
+    same(snippet, rtol=1e-9, scale=3.0)  # a least-squares system of 60 rows: rounding of its condition (~1e3)
