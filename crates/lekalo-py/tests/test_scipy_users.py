@@ -1420,3 +1420,103 @@ def test_bisplrep_linear_scattered():
         return tck[0].shape, tck[1].shape, ier, si.bisplev(np.linspace(0.5, 3.5, 4), np.linspace(0.5, 2.5, 3), tck)
 
     same(snippet, rtol=1e-9, scale=3.0)  # a least-squares system of 60 rows: rounding of its condition (~1e3)
+
+
+def test_splines_inside_quad_brentq_minimize():
+    """A spline handed to scipy.integrate.quad, scipy.optimize.brentq and minimize_scalar (scalar calls, float results)."""
+    from scipy.integrate import quad
+    from scipy.optimize import brentq, minimize_scalar
+
+    def snippet(si):
+        x = np.linspace(0, 6, 25)
+        y = np.sin(x) * np.exp(-x / 4)
+        out = []
+        for f in (si.make_interp_spline(x, y), si.CubicSpline(x, y), si.UnivariateSpline(x, y, s=0),
+                  si.PchipInterpolator(x, y), lambda v, tck=si.splrep(x, y): si.splev(v, tck)):
+            area, _ = quad(f, 0, 6)
+            out += [area, brentq(f, 2, 4), float(minimize_scalar(f, bounds=(3, 6), method="bounded").x)]
+        return out
+
+    # quad's adaptive rule and the root finders decide their steps from the values: a rounding
+    # difference can move an iterate, each result within the solvers' tolerances (1.5e-8, 2e-12)
+    same(snippet, rtol=1e-7)
+
+
+def test_pickle_more_objects():
+    """pickle and copy.copy of the other objects users save: LSQ/Interpolated splines, a periodic BSpline, NdBSpline, PPoly, Akima, smoothing surfaces."""
+
+    def snippet(si):
+        x = np.linspace(0, 5, 20)
+        y = np.cos(x)
+        objs = [si.LSQUnivariateSpline(x, y, [1.0, 2.5, 4.0]), si.InterpolatedUnivariateSpline(x, y, ext=3),
+                si.BSpline(np.arange(8.0), np.arange(4.0), 3, extrapolate="periodic"),
+                si.PPoly.from_spline(si.splrep(x, y)), si.Akima1DInterpolator(x, y, method="makima"),
+                si.CubicHermiteSpline(x, y, -np.sin(x))]
+        out = []
+        for o in objs:
+            out += [pickle.loads(pickle.dumps(o))(XS / 2), copy.copy(o)(XS / 2)]
+        nd = si.NdBSpline((np.r_[[0.0] * 4, 2.5, [5.0] * 4], np.r_[[0.0] * 3, [1.0] * 3]), np.arange(15.0).reshape(5, 3), (3, 2))
+        out.append(pickle.loads(pickle.dumps(nd))(np.array([[1.0, 0.5], [4.0, 0.2]])))
+        return out
+
+    same(snippet, scale=15.0)
+
+    def surface(si):
+        rng = np.random.default_rng(20)
+        px, py = rng.uniform(0, 5, (2, 80))
+        sb = si.SmoothBivariateSpline(px, py, np.sin(px) * py, s=1.0)
+        return pickle.loads(pickle.dumps(sb)).ev(px[:5], py[:5]), copy.deepcopy(sb)(1.0, 2.0)
+
+    same(surface, rtol=1e-3, scale=5.0)  # smoothing condition: within 0.001*s (module docstring)
+
+
+def test_bspline_negative_nu():
+    """BSpline called with nu=-1 (hoping for an antiderivative): SciPy 1.17 raises NotImplementedError, arrays and scalars alike."""
+
+    def array(si):
+        x = np.linspace(0, 5, 12)
+        return si.make_interp_spline(x, np.sin(x))(x, nu=-1)
+
+    same(array)
+
+    def scalar(si):
+        x = np.linspace(0, 5, 12)
+        return si.make_interp_spline(x, np.sin(x))(1.0, nu=-1)
+
+    same(scalar)
+
+    def periodic(si):
+        return si.BSpline(np.arange(8.0), np.arange(4.0), 3, extrapolate="periodic")(2.5, nu=-1)
+
+    same(periodic)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="refusal (not in differences.toml): UnivariateSpline(x, y) with NaN in y and check_finite "
+    "left False; SciPy returns an object (its class switched to InterpolatedUnivariateSpline) whose "
+    "values are NaN, lekalo.scipy raises lekalo.InputError (a ValueError) naming y[5]",
+)
+def test_univariatespline_nan_in_y_unchecked():
+    """UnivariateSpline of data with a NaN, check_finite not set (SciPy's default False)."""
+
+    def snippet(si):
+        x = np.linspace(0, 5, 12)
+        return si.UnivariateSpline(x, np.where(x > 2, np.nan, np.sin(x)))(x)
+
+    same(snippet)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="refusal (not in differences.toml): splprep of points with NaN coordinates; SciPy returns "
+    "NaN knots, coefficients and u, lekalo.scipy raises lekalo.InputError (a ValueError) naming points[11]",
+)
+def test_splprep_nan_points():
+    """splprep of a digitised curve with missing (NaN) coordinates."""
+
+    def snippet(si):
+        x = np.linspace(0, 5, 12)
+        return si.splprep([x, np.where(x > 2, np.nan, np.sin(x))])
+
+    same(snippet)
