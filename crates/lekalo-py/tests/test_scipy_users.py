@@ -1520,3 +1520,26 @@ def test_splprep_nan_points():
         return si.splprep([x, np.where(x > 2, np.nan, np.sin(x))])
 
     same(snippet)
+
+
+def test_univariatespline_class_after_fit():
+    """type(spl).__name__ as a notebook shows it: SciPy's UnivariateSpline becomes InterpolatedUnivariateSpline for s=0
+    and LSQUnivariateSpline for the least-squares polynomial, also after set_smoothing_factor; a user's subclass stays."""
+
+    def snippet(si):
+        x = np.linspace(0, 5, 12)
+        y = np.sin(x)
+        xn, yn = noisy(60, seed=21)
+
+        class Mine(si.UnivariateSpline):
+            pass
+
+        u = si.UnivariateSpline(xn, yn)
+        names = [type(u).__name__]
+        u.set_smoothing_factor(0.5)
+        names.append(type(u).__name__)
+        names += [type(si.UnivariateSpline(x, y, s=0)).__name__, type(si.UnivariateSpline(xn, yn, s=0.5)).__name__,
+                  type(Mine(x, y, s=0)).__name__, type(si.UnivariateSpline(x, y, s=0).derivative()).__name__]
+        return names, isinstance(si.UnivariateSpline(x, y, s=0), si.UnivariateSpline)
+
+    same(snippet)
