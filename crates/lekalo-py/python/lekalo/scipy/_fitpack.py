@@ -14,6 +14,55 @@ from ._bspline import BSpline, _antiderivative_tc, _derivative_tc, _insert_tc, _
 from ._interpolate import _not_a_knot, make_interp_spline, make_lsq_spline
 
 
+def _fpchec(x: np.ndarray, t: np.ndarray, k: int) -> int:
+    """FITPACK's ``fpchec`` as SciPy 1.17's ``curfit`` reports it: 0 where the full knot vector
+    ``t`` suits the sorted data ``x`` for degree ``k``, else ten times the number of the first
+    condition that fails: 1 ``k + 1 <= n - k - 1 <= m``, 2 the end knots in order, 3 the interior
+    knots strictly increasing and strictly inside the end knots, 4 the data within the end
+    knots, 5 Schoenberg-Whitney (FITPACK's greedy matching of the basis functions to data)."""
+    n, m, k1 = len(t), len(x), k + 1
+    nk1 = n - k1
+    if nk1 < k1 or nk1 > m:
+        return 10
+    if np.any(t[:k] > t[1:k1]) or np.any(t[n - k :] < t[n - k - 1 : n - 1]):
+        return 20
+    if np.any(t[k1 : nk1 + 1] <= t[k:nk1]):
+        return 30
+    if x[0] < t[k] or x[-1] > t[nk1]:
+        return 40
+    if x[0] >= t[k1] or x[-1] <= t[nk1 - 1]:
+        return 50
+    j = np.arange(1, nk1 - 1)
+    if j.size:
+        # the data point of basis function j: the first after the previous one beyond t[j],
+        # which must come before the last point and lie below t[j + k + 1]
+        q = np.arange(j.size)
+        first = np.searchsorted(x, t[j], side="right")
+        i = np.maximum(1, np.maximum.accumulate(first - q)) + q
+        if i[-1] > m - 2 or np.any(x[i] >= t[j + k1]):
+            return 50
+    return 0
+
+
+def _check_knots(x: np.ndarray, t: np.ndarray, k: int) -> None:
+    """SciPy's refusal of knots that FITPACK's ``fpchec`` rejects: ``ValueError`` for their
+    count (``ier = 10``), SciPy's ``TypeError("An error occurred")`` for its other codes."""
+    code = _fpchec(x, t, k)
+    if code == 10:
+        raise ValueError(
+            f"Error on input data: {len(t) - 2 * k - 2} interior knots for {len(x)} points of "
+            f"degree {k}: FITPACK needs k + 1 <= n - k - 1 <= m"
+        )
+    if code:
+        what = {
+            20: "the end knots are not in order",
+            30: "the interior knots t must be strictly increasing and strictly inside (xb, xe)",
+            40: "the data lie outside the end knots",
+            50: "the knots t do not satisfy the Schoenberg-Whitney conditions with the data x",
+        }[code]
+        raise TypeError(f"An error occurred: {what} (FITPACK's fpchec, ier={code})")
+
+
 def splrep(
     x: Any, y: Any, w: Any = None, xb: Any = None, xe: Any = None, k: int = 3, task: int = 0,
     s: Any = None, t: Any = None, full_output: int = 0, per: int = 0, quiet: int = 1,
@@ -62,6 +111,7 @@ def splrep(
         spl = BSpline.construct_fast(np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control[:, 0]), k)
     elif t is not None:
         tt = np.r_[(xb,) * (k + 1), np.asarray(t, dtype=np.float64), (xe,) * (k + 1)]
+        _check_knots(x, tt, k)
         spl = make_lsq_spline(x, y, tt, k, w=w)
     elif s == 0 and w is None and wide:
         # FITPACK's interpolation knots (the not-a-knot ones) with the ends at xb and xe
