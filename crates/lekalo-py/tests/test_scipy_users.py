@@ -1543,3 +1543,12 @@ def test_univariatespline_class_after_fit():
         return names, isinstance(si.UnivariateSpline(x, y, s=0), si.UnivariateSpline)
 
     same(snippet)
+
+
+def test_splrep_given_knots_mistakes():
+    """splrep(x, y, t=...) with the usual mistakes: the full knot vector of a BSpline (ends included), a knot past the data,
+    knots crowded where there is no data, more knots than points; SciPy's TypeError or ValueError for each."""
+    x = np.linspace(0, 5, 12)
+    for t in ([0.0, 0.0, 0.0, 0.0, 2.5, 5.0, 5.0, 5.0, 5.0], [1.0, 2.0, 6.0], [2.0, 1.0, 3.0], [1.0, 1.0, 1.0, 1.0, 2.0],
+              [1.0, 1.01, 1.02, 1.03], list(np.linspace(0.1, 4.9, 12)), [1.5, 3.5]):
+        same(lambda si, t=t: si.splrep(x, np.sin(x), t=t))
