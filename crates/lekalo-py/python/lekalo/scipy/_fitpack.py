@@ -192,6 +192,9 @@ def splev(x: Any, tck: Any, der: int = 0, ext: int = 0):
     x = np.asarray(x)
     shape = x.shape
     x = np.atleast_1d(x).ravel().astype(np.float64)
+    if x.size == 0:
+        # FITPACK's splev and splder refuse m < 1 points (ier = 10), as SciPy reports it
+        raise ValueError("Invalid input data: no points x to evaluate the spline at (SciPy's splev refuses an empty x)")
     n = t.shape[0] - k - 1
     lo, hi = t[k], t[n]
     outside = (x < lo) | (x > hi)
