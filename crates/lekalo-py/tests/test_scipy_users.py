@@ -1584,3 +1584,21 @@ def test_univariatespline_negative_weights():
         return si.UnivariateSpline(x, y, w=-np.full(30, 10.0))(XS)
 
     same(snippet, rtol=1e-3)  # smoothing condition: within 0.001*s (module docstring)
+
+
+def test_empty_query_points():
+    """Evaluating at an empty selection (xs[mask] where the mask is all False): every interpolator's shape, and splev's ValueError."""
+    x = np.linspace(0, 5, 12)
+    y = np.sin(x)
+    xq = x[x > 10]
+
+    def snippet(si):
+        y3 = np.stack([y, 2 * y])
+        return (si.CubicSpline(x, y3, axis=1)(xq), si.make_interp_spline(x, y)(xq), si.PchipInterpolator(x, y)(xq),
+                si.UnivariateSpline(x, y, s=0)(xq), si.RectBivariateSpline(x, x, np.outer(y, y)).ev(xq, xq),
+                si.splev(xq, si.make_interp_spline(x, y)))
+
+    same(snippet)
+    for kw in ({}, {"der": 1}, {"ext": 2}):
+        same(lambda si, kw=kw: si.splev(xq, si.splrep(x, y), **kw))
+    same(lambda si: si.splev(xq, si.splprep([x, y], s=0)[0]))
