@@ -14,6 +14,18 @@ from ._bspline import BSpline, _antiderivative_tc, _derivative_tc, _insert_tc, _
 from ._interpolate import _not_a_knot, make_interp_spline, make_lsq_spline
 
 
+class _TckCurve:
+    """A curve given by SciPy-side knots and coefficients, read as splprep reads lekalo's curves
+    (``knots``, ``control``, values at parameters)."""
+
+    def __init__(self, t: np.ndarray, c: np.ndarray, k: int) -> None:
+        self.knots, self.control = t, c
+        self._spline = BSpline.construct_fast(t, c, k)
+
+    def __call__(self, u: np.ndarray) -> np.ndarray:
+        return self._spline(u)
+
+
 def _fpchec(x: np.ndarray, t: np.ndarray, k: int) -> int:
     """FITPACK's ``fpchec`` as SciPy 1.17's ``curfit`` reports it: 0 where the full knot vector
     ``t`` suits the sorted data ``x`` for degree ``k``, else ten times the number of the first
@@ -461,9 +473,20 @@ def splprep(
         ue = uu[-1] if ue is None else float(ue)
         knots = np.r_[(ub,) * (k + 1), t[k + 1 : -k - 1], (ue,) * (k + 1)]
         curve = _lekalo.make_lsq_spline(uu, pts, knots, k, w)
+    elif per and u is not None and s == 0:
+        # FITPACK's clocur with s = 0 on the given parameters: the periodic interpolating spline
+        # (SciPy's make_interp_spline(u, x, bc_type="periodic"), the same knots and
+        # coefficients), its knots continued periodically beyond the ends as clocur's are
+        uu = np.asarray(u, dtype=np.float64)
+        b = make_interp_spline(uu, pts, k=k, bc_type="periodic")
+        knots = b.t
+        if k % 2:
+            period = uu[-1] - uu[0]
+            knots = np.r_[uu[-k - 1 : -1] - period, uu, uu[1 : k + 1] + period]
+        curve = _TckCurve(knots, b.c, k)
     elif per:
         if u is not None:
-            raise NotImplementedError("lekalo.scipy.splprep: u with per=1 is not available yet")
+            raise NotImplementedError("lekalo.scipy.splprep: u with per=1 and s > 0 is not available yet")
         curve, uu = _lekalo.fit_closed(np.ascontiguousarray(pts[:-1]), w=w[:-1] ** 2, k=k, s=float(s))
     else:
         curve, uu = _lekalo.make_splprep(pts, w=w, u=None if u is None else np.asarray(u, dtype=np.float64), k=k, s=float(s))
