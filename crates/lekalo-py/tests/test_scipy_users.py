@@ -1657,3 +1657,54 @@ def test_splrep_textbook_s_residual_just_above_s():
         return tck[0], si.splev(np.linspace(0, 10, 101), tck)
 
     same(snippet, rtol=1e-3)  # smoothing condition: within 0.001*s (module docstring)
+
+
+def test_splprep_closed_curve_given_angles():
+    """splprep([x, y], u=theta, s=0, per=1): a closed outline parametrised by its polar angle, evaluated past the period."""
+
+    def snippet(si):
+        theta = np.linspace(0, 2 * np.pi, 13)
+        theta[1:-1] += 0.1 * np.sin(3 * theta[1:-1])
+        r = 1 + 0.2 * np.cos(3 * theta)
+        out = []
+        for k in (1, 2, 3, 5):
+            tck, u = si.splprep([r * np.cos(theta), r * np.sin(theta)], u=theta, s=0, per=1, k=k)
+            out += [tck[0], tck[1], u, si.splev(np.linspace(-1, 8, 30), tck), si.splev(1.0, tck, der=1)]
+        return out
+
+    same(snippet, scale=2.0)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="needs Rust (not in differences.toml): splprep with u, per=1 and s > 0 (FITPACK's clocur "
+    "smoothing on given parameters); lekalo.scipy raises NotImplementedError",
+)
+def test_splprep_closed_curve_given_angles_smoothed():
+    """splprep([x, y], u=theta, s=..., per=1) of a noisy closed outline."""
+
+    def snippet(si):
+        theta = np.linspace(0, 2 * np.pi, 40)
+        rng = np.random.default_rng(24)
+        r = 1 + 0.2 * np.cos(3 * theta) + 0.01 * rng.standard_normal(40)
+        return si.splprep([r * np.cos(theta), r * np.sin(theta)], u=theta, s=0.01, per=1)
+
+    same(snippet, rtol=1e-3)  # smoothing condition: within 0.001*s (module docstring)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="documented in docs/scipy.md, not in differences.toml: UnivariateSpline.set_smoothing_factor "
+    "with s below the least-squares residual on the current knots (FITPACK adds knots to them) raises "
+    "NotImplementedError in lekalo.scipy",
+)
+def test_univariatespline_set_smoothing_factor_smaller():
+    """UnivariateSpline(x, y, s=1.0) then spl.set_smoothing_factor(0.2) to follow the data more closely."""
+
+    def snippet(si):
+        x, y = noisy(60, seed=25)
+        spl = si.UnivariateSpline(x, y, s=1.0)
+        spl.set_smoothing_factor(0.2)
+        return spl(XS), spl.get_knots()
+
+    same(snippet, rtol=1e-3)  # smoothing condition: within 0.001*s (module docstring)
