@@ -1708,3 +1708,22 @@ def test_univariatespline_set_smoothing_factor_smaller():
         return spl(XS), spl.get_knots()
 
     same(snippet, rtol=1e-3)  # smoothing condition: within 0.001*s (module docstring)
+
+
+def test_interp2d_bug_for_bug_bisplrep():
+    """SciPy's interp2d transition guide, the legacy-compatible path: bisplrep(xx, yy, z, kx=3, ky=3, s=0) on meshgrid data, bisplev on new axes."""
+
+    def snippet(si):
+        x = np.linspace(0, 5, 12)
+        xx, yy = np.meshgrid(x, x)
+        z = np.sin(xx) * np.cos(yy)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # the guide's replacement runs without a warning
+            tck, fp, ier, msg = si.bisplrep(xx.ravel(), yy.ravel(), z.ravel(), kx=3, ky=3, s=0.0, full_output=1)
+            tck2 = si.bisplrep(xx.ravel(), yy.ravel(), z.ravel(), kx=3, ky=3, s=0.0)
+        xn = np.linspace(0, 5, 9)
+        return tck[0], tck[1], fp, ier, si.bisplev(xn, xn, tck2)
+
+    # the minimal-norm interpolant of a rank-deficient system (156 coefficients, 144 points):
+    # both reach it by orthogonal factorisations, to the rounding of its condition (~1e4)
+    same(snippet, rtol=1e-9)
