@@ -543,6 +543,11 @@ def bisplrep(
         raise TypeError(f"len(w)={len(w)} is not equal to m={m}")
     if not (-1 <= task <= 1):
         raise TypeError("task must be -1, 0 or 1")
+    nonpositive = np.flatnonzero(np.asarray(w, dtype=np.float64) <= 0.0)
+    if nonpositive.size:
+        # FITPACK's surfit takes weights > 0 only (ier = 10), whatever the task; SciPy's words first
+        i = int(nonpositive[0])
+        raise ValueError(f"Invalid inputs. FITPACK's surfit takes weights > 0 only: w[{i}] = {w[i]}")
     if task == 1:
         raise NotImplementedError("lekalo.scipy: bisplrep with task=1 (resume from the previous knots) is not available")
     if s is None:
