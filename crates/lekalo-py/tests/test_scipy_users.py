@@ -1727,3 +1727,16 @@ def test_interp2d_bug_for_bug_bisplrep():
     # the minimal-norm interpolant of a rank-deficient system (156 coefficients, 144 points):
     # both reach it by orthogonal factorisations, to the rounding of its condition (~1e4)
     same(snippet, rtol=1e-9)
+
+
+def test_bisplrep_zero_weight_for_missing_point():
+    """bisplrep with w=0 to drop a bad measurement (as UnivariateSpline allows): FITPACK's surfit refuses weights <= 0."""
+
+    def snippet(si):
+        rng = np.random.default_rng(26)
+        x, y = rng.uniform(0, 1, (2, 40))
+        w = np.ones(40)
+        w[7] = 0.0
+        return si.bisplrep(x, y, x * y, w=w, s=0.1)
+
+    same(snippet)
