@@ -543,11 +543,6 @@ def bisplrep(
         raise TypeError(f"len(w)={len(w)} is not equal to m={m}")
     if not (-1 <= task <= 1):
         raise TypeError("task must be -1, 0 or 1")
-    nonpositive = np.flatnonzero(np.asarray(w, dtype=np.float64) <= 0.0)
-    if nonpositive.size:
-        # FITPACK's surfit takes weights > 0 only (ier = 10), whatever the task; SciPy's words first
-        i = int(nonpositive[0])
-        raise ValueError(f"Invalid inputs. FITPACK's surfit takes weights > 0 only: w[{i}] = {w[i]}")
     if task == 1:
         raise NotImplementedError("lekalo.scipy: bisplrep with task=1 (resume from the previous knots) is not available")
     if s is None:
@@ -581,6 +576,12 @@ def bisplrep(
     lwrk1 = u * v * (2 + b1 + b2) + 2 * (u + v + km * (m + ne) + ne - kx - ky) + b2 + 1
     if lwrk1 >= _lekalo.MAX_SCALARS:
         raise OverflowError("Too many data points to interpolate")
+    nonpositive = np.flatnonzero(np.asarray(w, dtype=np.float64) <= 0.0)
+    if nonpositive.size:
+        # FITPACK's surfit takes weights > 0 only (ier = 10), whatever the task; after SciPy's
+        # size check, which reads no array; SciPy's words first
+        i = int(nonpositive[0])
+        raise ValueError(f"Invalid inputs. FITPACK's surfit takes weights > 0 only: w[{i}] = {w[i]}")
     xb = float(x.min()) if xb is None else float(xb)
     xe = float(x.max()) if xe is None else float(xe)
     yb = float(y.min()) if yb is None else float(yb)
