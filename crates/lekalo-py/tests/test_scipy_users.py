@@ -1716,7 +1716,7 @@ def test_interp2d_bug_for_bug_bisplrep():
     def snippet(si):
         x = np.linspace(0, 5, 12)
         xx, yy = np.meshgrid(x, x)
-        z = np.sin(xx) * np.cos(yy)
+        z = np.sin(xx) * np.sin(yy)
         with warnings.catch_warnings():
             warnings.simplefilter("error")  # the guide's replacement runs without a warning
             tck, fp, ier, msg = si.bisplrep(xx.ravel(), yy.ravel(), z.ravel(), kx=3, ky=3, s=0.0, full_output=1)
