@@ -410,7 +410,8 @@ def splprep(
     ``fit_closed`` on FITPACK's knots; with knots ``t`` (``task=-1``) lekalo's ``make_lsq_spline``
     on their interior knots, the end knots at ``ub`` and ``ue``. ``ub``/``ue`` are read with ``u``
     only, as FITPACK reads them; beyond the ends of ``u`` they take the end knots of the
-    interpolating curve (``s = 0``), and are not available with ``s > 0``. Returns
+    interpolating curve (``s = 0``), and are not available with ``s > 0``. With ``u`` and
+    ``per=1``: the closed interpolating curve for ``s = 0``, not available for ``s > 0``. Returns
     ``([t, [c_0, …], k], u)`` (with ``fp``, ``ier``, ``msg`` for ``full_output``)."""
     x = np.array(np.atleast_1d(x), dtype=np.float64)
     idim, m = x.shape
