@@ -83,7 +83,7 @@ def test_cubic_spline_of_a_number_is_refused_naming_y():
         (lambda: ls.BSpline(np.array([0.0]), np.array([1.0]), 0), ValueError, "Need at least 2"),
         (lambda: ls.BSpline(np.arange(10.0), np.ones(5), -1), ValueError, "cannot be negative"),
         (lambda: ls.BSpline(np.arange(10.0), np.ones(6), 3, axis=3), np.exceptions.AxisError, "axis 3"),
-        (lambda: ls.make_interp_spline(X, Y)(XS, nu=-1), ValueError, "derivative order -1"),
+        (lambda: ls.make_interp_spline(X, Y)(XS, nu=-1), NotImplementedError, "derivative order nu= -1"),
         (lambda: ls.make_interp_spline(X, Y)(XS, nu=2**70), ValueError, "nu must be a whole number"),
         (lambda: ls.splrep(X, Y, k=0), TypeError, "1 <= k= 0 <=5"),
         (lambda: ls.splev(XS, ls.splrep(X, Y), der=-1), ValueError, "0<=der=-1<=k=3"),

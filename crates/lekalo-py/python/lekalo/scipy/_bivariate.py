@@ -208,6 +208,12 @@ def _surfit(x: Any, y: Any, z: Any, w: Any, box: Any, kx: int, ky: int, s: float
     c = np.asarray(spline.c).ravel()
     ncof = c.size
     polynomial = len(tx) == 2 * kx + 2 and len(ty) == 2 * ky + 2
+    if limit == "coefficients-exceed-data" and s == 0.0 and rank == (len(x) if w is None else np.count_nonzero(w)):
+        # interpolation (s = 0) with more coefficients than points, of rank the number of
+        # weighted points: FITPACK's rotations leave no residual row, so its fp is 0 exactly
+        # and it accepts the minimal-norm interpolant (ier = -rank) where lekalo's residual is
+        # the rounding of the evaluation
+        fp, limit = 0.0, None
     # FITPACK's order: a knot limit; the polynomial below s (rank not reported); the rank; an
     # interpolating spline; the polynomial within the tolerance of s
     if limit is not None:

@@ -221,7 +221,8 @@ class BSpline:
     def _evaluate(self, x: np.ndarray, nu: int, extrapolate: bool) -> np.ndarray:
         nu = operator.index(nu)
         if nu < 0:
-            raise ValueError(f"Cannot do derivative order {nu}.")
+            # SciPy 1.17's evaluate_spline refuses it so (earlier SciPy raised ValueError)
+            raise NotImplementedError(f"Cannot do derivative order nu= {nu}")
         n = self._n()
         m = int(np.prod(self.c.shape[1:], dtype=np.int64))
         complex_ = np.iscomplexobj(self.c)

@@ -14,6 +14,67 @@ from ._bspline import BSpline, _antiderivative_tc, _derivative_tc, _insert_tc, _
 from ._interpolate import _not_a_knot, make_interp_spline, make_lsq_spline
 
 
+class _TckCurve:
+    """A curve given by SciPy-side knots and coefficients, read as splprep reads lekalo's curves
+    (``knots``, ``control``, values at parameters)."""
+
+    def __init__(self, t: np.ndarray, c: np.ndarray, k: int) -> None:
+        self.knots, self.control = t, c
+        self._spline = BSpline.construct_fast(t, c, k)
+
+    def __call__(self, u: np.ndarray) -> np.ndarray:
+        return self._spline(u)
+
+
+def _fpchec(x: np.ndarray, t: np.ndarray, k: int) -> int:
+    """FITPACK's ``fpchec`` as SciPy 1.17's ``curfit`` reports it: 0 where the full knot vector
+    ``t`` suits the sorted data ``x`` for degree ``k``, else ten times the number of the first
+    condition that fails: 1 ``k + 1 <= n - k - 1 <= m``, 2 the end knots in order, 3 the interior
+    knots strictly increasing and strictly inside the end knots, 4 the data within the end
+    knots, 5 Schoenberg-Whitney (FITPACK's greedy matching of the basis functions to data)."""
+    n, m, k1 = len(t), len(x), k + 1
+    nk1 = n - k1
+    if nk1 < k1 or nk1 > m:
+        return 10
+    if np.any(t[:k] > t[1:k1]) or np.any(t[n - k :] < t[n - k - 1 : n - 1]):
+        return 20
+    if np.any(t[k1 : nk1 + 1] <= t[k:nk1]):
+        return 30
+    if x[0] < t[k] or x[-1] > t[nk1]:
+        return 40
+    if x[0] >= t[k1] or x[-1] <= t[nk1 - 1]:
+        return 50
+    j = np.arange(1, nk1 - 1)
+    if j.size:
+        # the data point of basis function j: the first after the previous one beyond t[j],
+        # which must come before the last point and lie below t[j + k + 1]
+        q = np.arange(j.size)
+        first = np.searchsorted(x, t[j], side="right")
+        i = np.maximum(1, np.maximum.accumulate(first - q)) + q
+        if i[-1] > m - 2 or np.any(x[i] >= t[j + k1]):
+            return 50
+    return 0
+
+
+def _check_knots(x: np.ndarray, t: np.ndarray, k: int) -> None:
+    """SciPy's refusal of knots that FITPACK's ``fpchec`` rejects: ``ValueError`` for their
+    count (``ier = 10``), SciPy's ``TypeError("An error occurred")`` for its other codes."""
+    code = _fpchec(x, t, k)
+    if code == 10:
+        raise ValueError(
+            f"Error on input data: {len(t) - 2 * k - 2} interior knots for {len(x)} points of "
+            f"degree {k}: FITPACK needs k + 1 <= n - k - 1 <= m"
+        )
+    if code:
+        what = {
+            20: "the end knots are not in order",
+            30: "the interior knots t must be strictly increasing and strictly inside (xb, xe)",
+            40: "the data lie outside the end knots",
+            50: "the knots t do not satisfy the Schoenberg-Whitney conditions with the data x",
+        }[code]
+        raise TypeError(f"An error occurred: {what} (FITPACK's fpchec, ier={code})")
+
+
 def splrep(
     x: Any, y: Any, w: Any = None, xb: Any = None, xe: Any = None, k: int = 3, task: int = 0,
     s: Any = None, t: Any = None, full_output: int = 0, per: int = 0, quiet: int = 1,
@@ -62,6 +123,7 @@ def splrep(
         spl = BSpline.construct_fast(np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control[:, 0]), k)
     elif t is not None:
         tt = np.r_[(xb,) * (k + 1), np.asarray(t, dtype=np.float64), (xe,) * (k + 1)]
+        _check_knots(x, tt, k)
         spl = make_lsq_spline(x, y, tt, k, w=w)
     elif s == 0 and w is None and wide:
         # FITPACK's interpolation knots (the not-a-knot ones) with the ends at xb and xe
@@ -142,6 +204,9 @@ def splev(x: Any, tck: Any, der: int = 0, ext: int = 0):
     x = np.asarray(x)
     shape = x.shape
     x = np.atleast_1d(x).ravel().astype(np.float64)
+    if x.size == 0:
+        # FITPACK's splev and splder refuse m < 1 points (ier = 10), as SciPy reports it
+        raise ValueError("Invalid input data: no points x to evaluate the spline at (SciPy's splev refuses an empty x)")
     n = t.shape[0] - k - 1
     lo, hi = t[k], t[n]
     outside = (x < lo) | (x > hi)
@@ -343,8 +408,11 @@ def splprep(
     """``scipy.interpolate.splprep``: the parametric spline of FITPACK's ``parcur``/``clocur``
     (``per=1``) through or near the points ``x`` (``(dim, m)``), lekalo's ``make_splprep`` and
     ``fit_closed`` on FITPACK's knots; with knots ``t`` (``task=-1``) lekalo's ``make_lsq_spline``
-    on their interior knots, the end knots at ``ub`` and ``ue``. Returns ``([t, [c_0, …], k], u)`` (with ``fp``, ``ier``,
-    ``msg`` for ``full_output``)."""
+    on their interior knots, the end knots at ``ub`` and ``ue``. ``ub``/``ue`` are read with ``u``
+    only, as FITPACK reads them; beyond the ends of ``u`` they take the end knots of the
+    interpolating curve (``s = 0``), and are not available with ``s > 0``. With ``u`` and
+    ``per=1``: the closed interpolating curve for ``s = 0``, not available for ``s > 0``. Returns
+    ``([t, [c_0, …], k], u)`` (with ``fp``, ``ier``, ``msg`` for ``full_output``)."""
     x = np.array(np.atleast_1d(x), dtype=np.float64)
     idim, m = x.shape
     if per:
@@ -366,8 +434,29 @@ def splprep(
         raise TypeError("m > k must hold")
     if task == 1 or (per and (t is not None or task == -1)):
         raise NotImplementedError("lekalo.scipy.splprep: task=1, and t with per=1, are not available yet")
-    if t is None and (ub is not None or ue is not None):
-        raise NotImplementedError("lekalo.scipy.splprep: ub/ue without t are not available yet")
+    if u is None or per:
+        # FITPACK reads ub/ue only with given parameters u: parcur computes u itself on [0, 1]
+        # (ub = 0, ue = 1) and clocur takes no interval, so SciPy ignores them here
+        ub = ue = None
+    elif ub is not None or ue is not None:
+        u0, u1 = float(np.asarray(u, dtype=np.float64)[0]), float(np.asarray(u, dtype=np.float64)[-1])
+        ub = u0 if ub is None else float(ub)
+        ue = u1 if ue is None else float(ue)
+        if ub > u0 or ue < u1:
+            # FITPACK's parcur: ub <= u[0] and ue >= u[-1] must hold (ier = 10)
+            raise ValueError("Invalid inputs.")
+        if ub == u0 and ue == u1:
+            ub = ue = None  # the interval of the data: the default
+        elif t is None and s == 0:
+            # FITPACK's interpolating curve (fppara with s = 0): the interior knots at the
+            # parameters (odd k) or between them (even k), the end knots at ub and ue, so the
+            # least squares on these knots below
+            uu0 = np.asarray(u, dtype=np.float64)
+            j = k // 2 + 1
+            inner = uu0[j : m - k - 1 + j] if k % 2 else 0.5 * (uu0[j : m - k - 1 + j] + uu0[j - 1 : m - k - 2 + j])
+            t = np.r_[(ub,) * (k + 1), inner, (ue,) * (k + 1)]
+        elif t is None:
+            raise NotImplementedError("lekalo.scipy.splprep: ub/ue beyond the ends of u with s > 0 are not available yet")
     pts = np.ascontiguousarray(x.T)
     if u is None and np.any(np.all(pts[1:] == pts[:-1], axis=1)):
         # two consecutive points coincide: the chord-length parameters do not increase
@@ -385,9 +474,20 @@ def splprep(
         ue = uu[-1] if ue is None else float(ue)
         knots = np.r_[(ub,) * (k + 1), t[k + 1 : -k - 1], (ue,) * (k + 1)]
         curve = _lekalo.make_lsq_spline(uu, pts, knots, k, w)
+    elif per and u is not None and s == 0:
+        # FITPACK's clocur with s = 0 on the given parameters: the periodic interpolating spline
+        # (SciPy's make_interp_spline(u, x, bc_type="periodic"), the same knots and
+        # coefficients), its knots continued periodically beyond the ends as clocur's are
+        uu = np.asarray(u, dtype=np.float64)
+        b = make_interp_spline(uu, pts, k=k, bc_type="periodic")
+        knots = b.t
+        if k % 2:
+            period = uu[-1] - uu[0]
+            knots = np.r_[uu[-k - 1 : -1] - period, uu, uu[1 : k + 1] + period]
+        curve = _TckCurve(knots, b.c, k)
     elif per:
         if u is not None:
-            raise NotImplementedError("lekalo.scipy.splprep: u with per=1 is not available yet")
+            raise NotImplementedError("lekalo.scipy.splprep: u with per=1 and s > 0 is not available yet")
         curve, uu = _lekalo.fit_closed(np.ascontiguousarray(pts[:-1]), w=w[:-1] ** 2, k=k, s=float(s))
     else:
         curve, uu = _lekalo.make_splprep(pts, w=w, u=None if u is None else np.asarray(u, dtype=np.float64), k=k, s=float(s))
@@ -477,6 +577,12 @@ def bisplrep(
     lwrk1 = u * v * (2 + b1 + b2) + 2 * (u + v + km * (m + ne) + ne - kx - ky) + b2 + 1
     if lwrk1 >= _lekalo.MAX_SCALARS:
         raise OverflowError("Too many data points to interpolate")
+    nonpositive = np.flatnonzero(np.asarray(w, dtype=np.float64) <= 0.0)
+    if nonpositive.size:
+        # FITPACK's surfit takes weights > 0 only (ier = 10), whatever the task; after SciPy's
+        # size check, which reads no array; SciPy's words first
+        i = int(nonpositive[0])
+        raise ValueError(f"Invalid inputs. FITPACK's surfit takes weights > 0 only: w[{i}] = {w[i]}")
     xb = float(x.min()) if xb is None else float(xb)
     xe = float(x.max()) if xe is None else float(xe)
     yb = float(y.min()) if yb is None else float(yb)

@@ -55,6 +55,22 @@ class UnivariateSpline:
         if s is None:
             s = float(len(x) if w is None else len(w))
         self._fit(x, y, w, bbox, k, s, None)
+        self._reset_class()
+
+    def _reset_class(self) -> None:
+        """SciPy's change of class after a fit, from FITPACK's ``ier``: the interpolating spline
+        (``ier = -1``, ``s = 0``) is an ``InterpolatedUnivariateSpline``, the least-squares
+        polynomial (``ier = -2``, no interior knot) an ``LSQUnivariateSpline``; otherwise the
+        class stays, and a user's subclass always keeps its own, as in SciPy."""
+        k, s = self._data[5], self._data[6]
+        if s == 0:
+            cls = InterpolatedUnivariateSpline
+        elif len(self._eval_args[0]) == 2 * k + 2:
+            cls = LSQUnivariateSpline
+        else:
+            return
+        if self.__class__ in (UnivariateSpline, InterpolatedUnivariateSpline, LSQUnivariateSpline):
+            self.__class__ = cls
 
     @staticmethod
     def validate_input(x: Any, y: Any, w: Any, bbox: Any, k: int, s: Any, ext: Any, check_finite: bool):
@@ -200,6 +216,7 @@ class UnivariateSpline:
             fresh = s >= float(np.sum((ww * (poly(x) - y)) ** 2))
         if fresh:
             self._fit(x, y, w, (xb, xe), k, s, None)
+            self._reset_class()
             return
         lsq = make_lsq_spline(x, y, t, k, w=w)
         fp = float(np.sum((ww * (lsq(x) - y)) ** 2))
@@ -214,6 +231,7 @@ class UnivariateSpline:
         self._data = (x, y, w, xb, xe, k, s)
         self._eval_args = (spl.t, _pad_rows(spl.c, spl.t.shape[0]), k)
         self._fp = float(np.sum((ww * (spl(x) - y)) ** 2))
+        self._reset_class()
 
 
 class InterpolatedUnivariateSpline(UnivariateSpline):

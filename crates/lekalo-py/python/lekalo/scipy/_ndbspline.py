@@ -148,7 +148,8 @@ class NdBSpline:
 def make_ndbspl(points: Any, values: Any, k: Any = 3, *, solver: Any = None, **solver_args: Any) -> NdBSpline:
     """``scipy.interpolate.make_ndbspl(points, values, k=3, *, solver=..., **solver_args)``: the
     tensor-product spline through ``values`` on the grid ``points``, with SciPy's not-a-knot
-    knots in every direction (odd degrees). SciPy assembles the collocation matrix of the whole
+    knots in every direction (data sites for odd degrees, mid-points for even ones, as SciPy's
+    ``_not_a_knot``). SciPy assembles the collocation matrix of the whole
     grid and hands it to a sparse solver; lekalo solves the same system exactly, one banded
     factorisation per direction and one sweep of solves along each
     (``TensorInterpolation::knot_vectors``, ``docs/theory/tensor.md``), so ``solver`` and its
@@ -163,9 +164,6 @@ def make_ndbspl(points: Any, values: Any, k: Any = 3, *, solver: Any = None, **s
     if len(k) != ndim:
         raise ValueError(f"{len(points) = } != {len(k) = }.")
     axes = [np.ascontiguousarray(p, dtype=float) for p in points]
-    for kd in k:
-        if kd % 2 != 1:
-            raise ValueError(f"Odd degree for now only. Got {kd}.")
     # an axis too short for its degree (or empty, or not 1-D) gets no knots here: the library
     # refuses it with its own message (the degree, the count and the degrees allowed) before
     # anything is allocated, where not-a-knot knots of a huge degree would be allocated first
