@@ -403,7 +403,13 @@ pub(crate) fn checked_nodes(
             "{option} {text}: the number of {nodes} overflows; give a smaller size"
         ));
     };
-    cx.check_size(count, option)?;
+    let limit = cx.max_size;
+    if count > limit {
+        return bad_input(format!(
+            "{option} {text}: {count} {nodes}, above the size limit {limit}; give a smaller \
+             size, or raise the limit with --max-size {count} if the machine has the memory"
+        ));
+    }
     Ok(count)
 }
 

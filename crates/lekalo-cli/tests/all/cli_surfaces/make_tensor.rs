@@ -347,7 +347,7 @@ fn bad_nets_exit_2_naming_the_option() {
     fails(&["bspline-tensor", "--degree", "1"], "needs --net");
     fails(
         &["bspline-tensor", "--net", "1000x1000x1000", "--degree", "1"],
-        "--net 1000000000 is above the size limit",
+        "--net 1000x1000x1000: 1000000000 control points, above the size limit 10000000",
     );
     fails(
         &[
@@ -359,7 +359,7 @@ fn bad_nets_exit_2_naming_the_option() {
             "--degree",
             "1",
         ],
-        "--net 24 is above the size limit 10",
+        "--net 3x2x4: 24 control points, above the size limit 10; give a smaller size, or raise the limit with --max-size 24",
     );
     fails(
         &[
