@@ -204,20 +204,8 @@ fn wrong_knots_exit_2_naming_the_option_and_direction() {
 
 /// `lekalo eval FILE --at …` of a tensor spline: the value column of each row.
 fn eval_at(spline: &Path, at: &[[f64; 3]]) -> Vec<f64> {
-    let list: Vec<String> = at.iter().flatten().map(|x| format!("{x:?}")).collect();
-    let out = lekalo()
-        .arg("eval")
-        .arg(spline)
-        .args(["--at", &list.join(","), "--json"])
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
-    let e: serde_json::Value = serde_json::from_slice(&out).unwrap();
-    (0..at.len())
-        .map(|r| e["rows"][r][3].as_f64().unwrap())
-        .collect()
+    let (_, rows) = crate::common::eval_at(spline, at);
+    rows.iter().map(|r| r[3]).collect()
 }
 
 #[test]

@@ -49,23 +49,8 @@ fn list(axis: &[f64]) -> String {
 
 /// The values of the spline `file` at `points` (`lekalo eval --at … --json`).
 fn eval(file: &Path, points: &[[f64; 3]]) -> Vec<f64> {
-    let at: Vec<String> = points.iter().flatten().map(|x| format!("{x:?}")).collect();
-    let out = lekalo()
-        .arg("eval")
-        .arg(file)
-        .args(["--at", &at.join(","), "--json"])
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
-    let j: serde_json::Value = serde_json::from_slice(&out).unwrap();
-    j["rows"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|r| r[3].as_f64().unwrap())
-        .collect()
+    let (_, rows) = crate::common::eval_at(file, points);
+    rows.iter().map(|r| r[3]).collect()
 }
 
 #[test]

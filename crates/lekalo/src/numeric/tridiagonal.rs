@@ -236,8 +236,39 @@ pub(crate) fn solve_unpivoted(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
+
+    /// SciPy's `CubicSpline` rows `(dl, d, du)` on `n` uneven steps, some 100× the others (where
+    /// `dgtsv` swaps rows): not-a-knot ends from four points, natural ends below (the
+    /// not-a-knot rows of three points are singular: SciPy solves that case as the parabola
+    /// through them).
+    pub(crate) fn spline_rows(n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let h: Vec<f64> = (0..n - 1)
+            .map(|i| {
+                if i % 17 == 3 {
+                    40.0
+                } else {
+                    0.1 + (i % 5) as f64 * 0.3
+                }
+            })
+            .collect();
+        let mut d = vec![1.0; n];
+        let (mut dl, mut du) = (vec![0.0; n - 1], vec![0.0; n - 1]);
+        for i in 1..n - 1 {
+            d[i] = 2.0 * (h[i - 1] + h[i]);
+            du[i] = h[i - 1];
+            dl[i - 1] = h[i];
+        }
+        if n >= 4 {
+            (d[0], du[0]) = (h[1], h[0] + h[1]);
+            (d[n - 1], dl[n - 2]) = (h[n - 3], h[n - 3] + h[n - 2]);
+        } else {
+            (d[0], du[0]) = (2.0 * h[0], h[0]);
+            (d[n - 1], dl[n - 2]) = (2.0 * h[n - 2], h[n - 2]);
+        }
+        (dl, d, du)
+    }
 
     /// `A·x` for the tridiagonal `A` (one column).
     fn apply(dl: &[f64], d: &[f64], du: &[f64], x: &[f64]) -> Vec<f64> {
@@ -317,24 +348,7 @@ mod tests {
     fn without_pivoting_the_same_solution_to_rounding() {
         // SciPy's CubicSpline rows on uneven steps: the pivots positive, gtsv swapping rows
         let n = 300;
-        let h: Vec<f64> = (0..n - 1)
-            .map(|i| {
-                if i % 17 == 3 {
-                    40.0
-                } else {
-                    0.1 + (i % 5) as f64 * 0.3
-                }
-            })
-            .collect();
-        let mut d = vec![1.0; n];
-        let (mut dl, mut du) = (vec![0.0; n - 1], vec![0.0; n - 1]);
-        for i in 1..n - 1 {
-            d[i] = 2.0 * (h[i - 1] + h[i]);
-            du[i] = h[i - 1];
-            dl[i - 1] = h[i];
-        }
-        (d[0], du[0]) = (h[1], h[0] + h[1]);
-        (d[n - 1], dl[n - 2]) = (h[n - 3], h[n - 3] + h[n - 2]);
+        let (dl, d, du) = spline_rows(n);
         for ncols in [1, 3] {
             let rhs: Vec<f64> = (0..n * ncols).map(|i| (i as f64 * 0.37).sin()).collect();
             let (mut fast, mut recip) = (rhs.clone(), vec![0.0; n]);

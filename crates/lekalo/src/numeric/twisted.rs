@@ -154,38 +154,8 @@ pub(crate) fn solve_twisted(m: &impl Bands, b: &mut [f64], recip: &mut [f64]) ->
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::numeric::tridiagonal::tests::spline_rows;
     use crate::numeric::tridiagonal::{solve_tridiagonal, StoredBands, Tridiagonal};
-
-    /// SciPy's `CubicSpline` rows on `n` uneven steps, some 100× the others: not-a-knot ends
-    /// from four points, natural ends below.
-    fn spline_rows(n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
-        let h: Vec<f64> = (0..n - 1)
-            .map(|i| {
-                if i % 17 == 3 {
-                    40.0
-                } else {
-                    0.1 + (i % 5) as f64 * 0.3
-                }
-            })
-            .collect();
-        let mut d = vec![1.0; n];
-        let (mut dl, mut du) = (vec![0.0; n - 1], vec![0.0; n - 1]);
-        for i in 1..n - 1 {
-            d[i] = 2.0 * (h[i - 1] + h[i]);
-            du[i] = h[i - 1];
-            dl[i - 1] = h[i];
-        }
-        if n >= 4 {
-            (d[0], du[0]) = (h[1], h[0] + h[1]);
-            (d[n - 1], dl[n - 2]) = (h[n - 3], h[n - 3] + h[n - 2]);
-        } else {
-            // natural ends (the not-a-knot rows of three points are singular: SciPy solves
-            // that case as the parabola through them)
-            (d[0], du[0]) = (2.0 * h[0], h[0]);
-            (d[n - 1], dl[n - 2]) = (2.0 * h[n - 2], h[n - 2]);
-        }
-        (dl, d, du)
-    }
 
     /// `dgtsv`'s solution of the same system.
     fn pivoted(dl: &[f64], d: &[f64], du: &[f64], rhs: &[f64]) -> Vec<f64> {

@@ -75,22 +75,9 @@ const AT: [[f64; 3]; 5] = [
 
 /// The rows `x1, x2, x3, y1, y2` of `eval --at` at [`AT`] of the spline `file`.
 fn evaluated(file: &Path) -> Vec<Vec<f64>> {
-    let at: Vec<String> = AT.iter().flatten().map(|v| format!("{v:?}")).collect();
-    let out = lekalo()
-        .arg("eval")
-        .arg(file)
-        .args(["--at", &at.join(","), "--json"])
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
-    let j: serde_json::Value = serde_json::from_slice(&out).unwrap();
-    assert_eq!(
-        j["columns"],
-        serde_json::json!(["x1", "x2", "x3", "y1", "y2"])
-    );
-    serde_json::from_value(j["rows"].clone()).unwrap()
+    let (columns, rows) = crate::common::eval_at(file, &AT);
+    assert_eq!(columns, serde_json::json!(["x1", "x2", "x3", "y1", "y2"]));
+    rows
 }
 
 /// `lekalo make KIND --control net.csv --net 3x2x4 ARGS -o out`, which must succeed.

@@ -2,7 +2,7 @@
 //! files.
 
 use std::fs;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use assert_cmd::Command;
 
@@ -138,4 +138,33 @@ pub(crate) fn eval_fitted(
         .iter()
         .map(|row| (row["t"].as_f64().unwrap(), row["x"].as_f64().unwrap()))
         .collect()
+}
+
+/// `lekalo eval FILE --at … --json` of a spline in N parameters at `points` (each a point of
+/// its parameters), which must succeed: the columns it names and its rows.
+pub(crate) fn eval_at(
+    file: &Path,
+    points: &[impl AsRef<[f64]>],
+) -> (serde_json::Value, Vec<Vec<f64>>) {
+    let at: Vec<String> = points
+        .iter()
+        .flat_map(|p| {
+            p.as_ref()
+                .iter()
+                .map(|x| format!("{x:?}"))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    let out = lekalo()
+        .arg("eval")
+        .arg(file)
+        .args(["--at", &at.join(","), "--json"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let j: serde_json::Value = serde_json::from_slice(&out).unwrap();
+    let rows = serde_json::from_value(j["rows"].clone()).unwrap();
+    (j["columns"].clone(), rows)
 }
