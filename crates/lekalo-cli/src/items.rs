@@ -101,7 +101,10 @@ pub(crate) fn open(cx: &Context, path: &Path, jsonl: bool) -> Result<Items> {
         })?;
         lekalo_io::note_read(path);
         let name = path.display().to_string();
-        return Ok(Items::One(lekalo_io::read_npz_curve(&bytes, &name)?));
+        return Ok(match lekalo_io::read_npz(&bytes, &name)? {
+            lekalo_io::Shape::Curve(o) => Items::One(o),
+            other => Items::Other(other),
+        });
     }
     let (text, name) = lekalo_io::read_input(path)?;
     open_text(cx, path, jsonl, &text, &name, start)

@@ -12,6 +12,7 @@
 //! | points: CSV, whitespace text, JSON | yes | — | [`read_points`] |
 //! | points: NumPy `.npy` float64 `(n, d)` | yes | yes (samples) | [`read_npy_points`], [`npy_bytes`] |
 //! | curves: NumPy `.npz` (degree, knots, control points, weights) | yes | yes | [`read_npz_curve`], [`curve_to_npz`], [`write_npz_curve`] |
+//! | tensor splines in N parameters: NumPy `.npz` (degrees, `knots_0` …, control points, weights; SciPy's `NdBSpline` layout) | yes | yes | [`read_npz_tensor`], [`tensor_to_npz`], [`write_npz_tensor`], [`read_npz`] (either kind) |
 //! | batches: Parquet point sets in, curves in and out, samples out (batch by batch); point sets from a CSV with a key column | yes | yes | [`read_point_groups`], [`read_curve_groups`], [`ParquetBatchWriter`], [`read_text_point_groups`] |
 //! | samples (t, point, derivatives, curvature): CSV, JSON | — | yes | [`sample_table`] |
 //! | SVG plots: curve, control polygon, knots, data, basis functions, wireframes | — | yes | [`Figure`] |
@@ -51,7 +52,7 @@ use envelope::{
 };
 use mesh::{mesh_files, obj};
 use plot::{figure_check, layout, palette, png, surface_plot, svg, wireframe};
-use points::{npy, npz, points_in, text_points};
+use points::{npy, npz, points_in, tensor_npz, text_points};
 use tables::{numfmt, samples, surface_samples};
 
 pub use analysis::{curvature, uniform};
@@ -109,4 +110,5 @@ pub use svg::{
     ColorBar, CurvePlot, Face, Figure, Series, Style,
 };
 pub use tensor_json::{read_tensor, tensor_to_json, tensor_type_name};
+pub use tensor_npz::{read_npz, read_npz_tensor, tensor_to_npz, write_npz_tensor};
 pub use wireframe::{wireframe_figure, Grid, Projection};

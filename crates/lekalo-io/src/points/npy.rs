@@ -124,6 +124,13 @@ pub(crate) fn read_array(
     finish(h, flat, source)
 }
 
+/// The shape an `.npy` file's header declares (float64, or int64 too if `integer` is allowed),
+/// read from the header alone: a caller checks it against other arrays before [`read_array`]
+/// decodes the data.
+pub(crate) fn read_array_shape(bytes: &[u8], source: &str, integer: bool) -> IoResult<Vec<usize>> {
+    Ok(parse_header(bytes, source, integer)?.shape)
+}
+
 /// An empty vector with room for the elements of the array of header `h`, after checking that
 /// the file's `data_len` bytes after the header are exactly those elements.
 fn room_for(h: &NpyHeader, data_len: usize, source: &str) -> IoResult<Vec<f64>> {

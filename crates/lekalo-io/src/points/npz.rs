@@ -103,53 +103,10 @@ pub fn write_npz_curve<W: Write + Seek>(obj: &Object, w: W) -> std::io::Result<(
 /// compressed or missing member, or a member that is not a valid `.npy` array of the table's
 /// dtype and shape; [`IoError::Invalid`] if the library rejects the curve (knots, weights).
 pub fn read_npz_curve(bytes: &[u8], source: &str) -> IoResult<Object> {
-    let mut z = ZipArchive::new(Cursor::new(bytes)).map_err(|e| {
-        IoError::syntax(
-            Location::new(source),
-            format!("not a NumPy .npz archive (a zip file): {e}; save the arrays with numpy.savez"),
-        )
-    })?;
-    if let Some(name) = repeated_member(bytes, z.central_directory_start()) {
-        let field = name.strip_suffix(".npy").unwrap_or(&name).to_string();
-        return Err(IoError::syntax(
-            Location::new(source).at_field(field),
-            format!(
-                "the archive has two members named {name}: NumPy's np.load reads the last, other \
-                 zip readers the first; write each array once (numpy.savez(path, degree=..., \
-                 knots=..., control_points=...))"
-            ),
-        ));
-    }
-    let mut member = |name: &str, required: bool| -> IoResult<Option<(String, Vec<u8>)>> {
-        let file = format!("{name}.npy");
-        let label = format!("{source}: {file}");
-        let mut f = match z.by_name(&file) {
-            Ok(f) => f,
-            Err(zip::result::ZipError::FileNotFound) if !required => return Ok(None),
-            Err(zip::result::ZipError::FileNotFound) => {
-                return Err(IoError::syntax(
-                    Location::new(source).at_field(name),
-                    format!("the archive has no member {file}; a curve needs degree, knots and control_points (and weights for NURBS)"),
-                ))
-            }
-            Err(e) => {
-                return Err(IoError::syntax(
-                    Location::new(source).at_field(name),
-                    format!("cannot read member {file}: {e}; write the archive with numpy.savez (not savez_compressed)"),
-                ))
-            }
-        };
-        let mut out = Vec::new();
-        (&mut f)
-            .take(u64::try_from(bytes.len()).unwrap_or(u64::MAX))
-            .read_to_end(&mut out)
-            .map_err(|e| {
-                IoError::syntax(
-                    Location::new(source).at_field(name),
-                    format!("cannot read member {file}: {e}; write the archive with numpy.savez (not savez_compressed)"),
-                )
-            })?;
-        Ok(Some((label, out)))
+    let mut z = open_archive(bytes, source)?;
+    let needs = "a curve needs degree, knots and control_points (and weights for NURBS)";
+    let mut member = |name: &str, required: bool| {
+        read_member(&mut z, bytes.len(), source, name, required, needs)
     };
     let shape_err =
         |label: &str, what: &str| IoError::syntax(Location::new(label).at_field("shape"), what);
@@ -196,6 +153,72 @@ pub fn read_npz_curve(bytes: &[u8], source: &str) -> IoResult<Object> {
         Some(w) => NurbsCurve::new(degree, knots, control, w).map(Object::Nurbs),
     };
     obj.map_err(|error| IoError::Invalid { at, error })
+}
+
+/// The zip archive of an `.npz` file's `bytes`, refused with a named error if it is not a zip
+/// or if two members share a name; `source` names the input in messages.
+pub(crate) fn open_archive<'a>(
+    bytes: &'a [u8],
+    source: &str,
+) -> IoResult<ZipArchive<Cursor<&'a [u8]>>> {
+    let z = ZipArchive::new(Cursor::new(bytes)).map_err(|e| {
+        IoError::syntax(
+            Location::new(source),
+            format!("not a NumPy .npz archive (a zip file): {e}; save the arrays with numpy.savez"),
+        )
+    })?;
+    if let Some(name) = repeated_member(bytes, z.central_directory_start()) {
+        let field = name.strip_suffix(".npy").unwrap_or(&name).to_string();
+        return Err(IoError::syntax(
+            Location::new(source).at_field(field),
+            format!(
+                "the archive has two members named {name}: NumPy's np.load reads the last, other \
+                 zip readers the first; write each array once (numpy.savez(path, name=array, ...))"
+            ),
+        ));
+    }
+    Ok(z)
+}
+
+/// The bytes of member `name.npy` of the archive `z` (of `total` bytes, the most read), with
+/// its label `source: name.npy` for messages; `None` for a missing member that is not
+/// `required`. A missing required member is refused naming it and `needs` (what the archive
+/// must hold); a compressed or unreadable one naming it.
+pub(crate) fn read_member(
+    z: &mut ZipArchive<Cursor<&[u8]>>,
+    total: usize,
+    source: &str,
+    name: &str,
+    required: bool,
+    needs: &str,
+) -> IoResult<Option<(String, Vec<u8>)>> {
+    let file = format!("{name}.npy");
+    let label = format!("{source}: {file}");
+    let unreadable = |e: &dyn std::fmt::Display| {
+        IoError::syntax(
+            Location::new(source).at_field(name),
+            format!(
+                "cannot read member {file}: {e}; write the archive with numpy.savez (not savez_compressed)"
+            ),
+        )
+    };
+    let mut f = match z.by_name(&file) {
+        Ok(f) => f,
+        Err(zip::result::ZipError::FileNotFound) if !required => return Ok(None),
+        Err(zip::result::ZipError::FileNotFound) => {
+            return Err(IoError::syntax(
+                Location::new(source).at_field(name),
+                format!("the archive has no member {file}; {needs}"),
+            ))
+        }
+        Err(e) => return Err(unreadable(&e)),
+    };
+    let mut out = Vec::new();
+    (&mut f)
+        .take(u64::try_from(total).unwrap_or(u64::MAX))
+        .read_to_end(&mut out)
+        .map_err(|e| unreadable(&e))?;
+    Ok(Some((label, out)))
 }
 
 /// The first name that two entries of the zip central directory starting at byte `start` of

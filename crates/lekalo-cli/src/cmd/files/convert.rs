@@ -27,12 +27,17 @@ Formats (chosen by --to or the output's extension):
 Surfaces (bezier_surface, bspline_surface, nurbs_surface) convert to json, step
 (B_SPLINE_SURFACE_WITH_KNOTS, rational for NURBS), obj (a √samples × √samples tessellation
 with the surface's normals) and svg/png (wireframe); piecewise polynomials to json, csv
-(x, f samples) and svg/png (graph with the breakpoints).
+(x, f samples) and svg/png (graph with the breakpoints). Splines in N parameters
+(bspline_tensor, nurbs_tensor) convert to json and npz: degrees (N,), knots_0 … knots_{N-1},
+control_points (n_1, …, n_N) or (n_1, …, n_N, dim) (, weights (n_1, …, n_N)), the arrays
+of SciPy's NdBSpline; a .npz with a degrees member is read as such a spline.
 
 Examples:
   lekalo convert curve.json -o curve.step
   lekalo convert curve.json -o curve.npz
   lekalo convert curve.npz -o from-npz.json
+  lekalo convert tensor.json -o tensor.npz
+  lekalo convert tensor.npz -o from-npz.json
   lekalo convert many.jsonl -o all.step
   lekalo convert curve.json -o curve.csv --samples 200
   lekalo convert curve.json --to jsonl

@@ -312,8 +312,9 @@ pub(crate) fn convert(
         )?),
         (Shape::Pp(p), "csv") => Ok(pp_csv(p, samples)?.into_bytes()),
         (Shape::Pp(p), "svg" | "png") => plot(&pp_figure(p, samples, None)?),
+        (Shape::Tensor(t), "npz") => Ok(lekalo_io::tensor_to_npz(t)?),
         (Shape::Tensor(t), other) => bad_input(format!(
-            "a spline in {} parameters converts to json only, not \"{other}\"",
+            "a spline in {} parameters converts to json or npz, not \"{other}\"",
             t.n_vars()
         )),
         (Shape::Surface(_), other) => bad_input(format!(
