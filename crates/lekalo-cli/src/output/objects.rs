@@ -34,6 +34,38 @@ const CURVE_SAMPLES: usize = 200;
 /// Samples per direction of a surface in plots and OBJ output.
 const SURFACE_SAMPLES: usize = 25;
 
+/// Writes a spline in N parameters: as a NumPy archive for an output `.npz` (SciPy's
+/// `NdBSpline` arrays, [`lekalo_io::write_npz_tensor`], streamed into the file), as its JSON
+/// otherwise.
+pub(crate) fn write_tensor(
+    t: &lekalo::Tensor,
+    (to, out): (Option<&str>, Option<&Path>),
+    inputs: &[PathBuf],
+    cx: &Context,
+) -> Result<()> {
+    if tensor_format(t.n_vars(), to, out)? == "npz" {
+        return super::emit_seek(out, inputs, cx, |w| lekalo_io::write_npz_tensor(t, w));
+    }
+    emit(out, lekalo_io::tensor_to_json(t).as_bytes(), inputs, cx)
+}
+
+/// The format a spline in `n` parameters is written in, `json` or `npz`, from `--to` or the
+/// output's extension (JSON by default); another is refused naming both, before the spline
+/// is computed.
+pub(crate) fn tensor_format(
+    n: usize,
+    to: Option<&str>,
+    out: Option<&Path>,
+) -> Result<&'static str> {
+    match format_of(to, out, "json").as_str() {
+        "json" => Ok("json"),
+        "npz" => Ok("npz"),
+        other => bad_input(format!(
+            "a spline in {n} parameters is written as json or npz, not \"{other}\""
+        )),
+    }
+}
+
 /// Writes a curve object in the chosen format; `data` are points to show in plots.
 pub(crate) fn write_curve(
     obj: &Object,

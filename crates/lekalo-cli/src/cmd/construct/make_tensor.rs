@@ -78,13 +78,14 @@ pub(crate) fn run(m: &TensorMake<'_>, cx: &Context) -> Result<()> {
     }
     let control = checked_values(("--net", net), "control points", &shape, m.control, cx)?;
     let mut inputs: Vec<PathBuf> = vec![m.control.to_path_buf()];
-    let text = match m.weights {
+    let tensor = match m.weights {
         None => {
             let s = TensorBSpline::from_knot_vectors(degrees, knots, control)?;
-            match n {
-                2 => Surface::BSpline(s.to_surface()?).to_json_pretty(),
-                _ => lekalo_io::tensor_to_json(&Tensor::BSpline(s)),
+            if n == 2 {
+                let text = Surface::BSpline(s.to_surface()?).to_json_pretty();
+                return emit(m.output, text.as_bytes(), &inputs, cx);
             }
+            Tensor::BSpline(s)
         }
         Some(w) => {
             let weights = crate::cmd::explicit::parameters(cx, w, "--weights")?;
@@ -106,13 +107,14 @@ pub(crate) fn run(m: &TensorMake<'_>, cx: &Context) -> Result<()> {
                     anyhow::Error::from(e)
                 }
             })?;
-            match n {
-                2 => Surface::Nurbs(s.to_nurbs_surface()?).to_json_pretty(),
-                _ => lekalo_io::tensor_to_json(&Tensor::Nurbs(s)),
+            if n == 2 {
+                let text = Surface::Nurbs(s.to_nurbs_surface()?).to_json_pretty();
+                return emit(m.output, text.as_bytes(), &inputs, cx);
             }
+            Tensor::Nurbs(s)
         }
     };
-    emit(m.output, text.as_bytes(), &inputs, cx)
+    crate::output::objects::write_tensor(&tensor, (None, m.output), &inputs, cx)
 }
 
 /// The knot vector of each direction of the net `shape` (`--net net`) at `degrees`: the one

@@ -309,14 +309,8 @@ pub(crate) struct GridInterpolation<'a> {
 /// The tensor spline through the values of `file` (one row a grid node, the first direction
 /// slowest), written as JSON.
 pub(crate) fn interpolate(g: &GridInterpolation<'_>, file: &Path, cx: &Context) -> Result<()> {
-    let format = format_of(g.to, g.output, "json");
-    if format != "json" {
-        return bad_input(format!(
-            "a spline in {} parameters is written as json, not \"{format}\"",
-            g.factors.len()
-        ));
-    }
     let n = g.factors.len();
+    crate::output::objects::tensor_format(n, g.to, g.output)?;
     let degrees = degrees_for(g.degree, n)?;
     let interp = grid_interpolation(&degrees, g)?;
     let values = checked_grid_values(g.grid, &g.factors, file, cx)?;
@@ -335,10 +329,9 @@ pub(crate) fn interpolate(g: &GridInterpolation<'_>, file: &Path, cx: &Context) 
         Ok(other) => anyhow::Error::from(other),
         Err(other) => other,
     })?;
-    let text = lekalo_io::tensor_to_json(&Tensor::BSpline(s));
     let mut inputs = vec![file.to_path_buf()];
     inputs.extend(g.params.files());
-    emit(g.output, text.as_bytes(), &inputs, cx)
+    crate::output::objects::write_tensor(&Tensor::BSpline(s), (g.to, g.output), &inputs, cx)
 }
 
 /// The interpolation of a grid in every number of directions (surfaces included) with the

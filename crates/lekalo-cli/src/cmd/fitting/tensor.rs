@@ -26,7 +26,7 @@ use crate::cmd::tensor::{
 };
 use crate::context::Context;
 use crate::exit::{bad_input, BadInput};
-use crate::output::{emit, format_of};
+use crate::output::emit;
 
 /// The number of variables of a tensor fit (three or more, or any number for `--scattered
 /// --s` and `--grid --smooth`), or `None` for curves and surfaces: the factors of `--grid`; for `--scattered`, the
@@ -84,11 +84,11 @@ pub(super) fn variables(a: &FitArgs) -> Result<Option<usize>> {
 /// The fit in `n ≥ 3` variables asked by `a`, written with its report.
 pub(super) fn run(a: &FitArgs, n: usize, cx: &Context) -> Result<()> {
     refuse_curve_options(a)?;
-    let format = format_of(a.out.to.as_deref(), a.out.output.as_deref(), "json");
-    if format != "json" {
-        return bad_input(format!(
-            "a spline in {n} parameters is written as json, not \"{format}\""
-        ));
+    let (to, out) = (a.out.to.as_deref(), a.out.output.as_deref());
+    if crate::output::objects::tensor_format(n, to, out)? == "npz" && a.json {
+        return bad_input(
+            "--json writes the spline with its report as JSON; drop --json to write the .npz",
+        );
     }
     let degrees = degrees_for(&a.degrees, n)?;
     let counts = match &a.ctrl_grid {
@@ -639,9 +639,9 @@ pub(super) fn finish_with(
     if a.per_point {
         report["residuals"] = json!(residuals);
     }
-    let text = lekalo_io::tensor_to_json(&Tensor::BSpline(s.clone()));
+    let tensor = Tensor::BSpline(s.clone());
     if a.json {
-        let object: Value = serde_json::from_str(&text)?;
+        let object: Value = serde_json::from_str(&lekalo_io::tensor_to_json(&tensor))?;
         let text = serde_json::to_string_pretty(&json!({ "object": object, "report": report }))?;
         return emit(a.out.output.as_deref(), text.as_bytes(), inputs, cx);
     }
@@ -655,7 +655,8 @@ pub(super) fn finish_with(
             report["weighted_rss"]
         ));
     }
-    emit(a.out.output.as_deref(), text.as_bytes(), inputs, cx)
+    let (to, out) = (a.out.to.as_deref(), a.out.output.as_deref());
+    crate::output::objects::write_tensor(&tensor, (to, out), inputs, cx)
 }
 
 /// `5x4x4`.

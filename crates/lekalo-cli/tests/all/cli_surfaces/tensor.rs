@@ -375,3 +375,45 @@ fn a_tensor_converts_to_npz_and_back_and_the_npz_is_read_by_eval_and_info() {
         .code(2)
         .stderr(contains("knots_1"));
 }
+
+#[test]
+fn interpolate_and_make_write_npz_when_the_output_asks_for_it() {
+    let d = tempfile::tempdir().unwrap();
+    let json = interpolated(d.path());
+    // interpolate --grid: the same spline as its JSON, written straight as an archive
+    let npz = d.path().join("direct.npz");
+    lekalo()
+        .arg("interpolate")
+        .arg(d.path().join("values.txt"))
+        .args([
+            "--grid", "5x4x3", "--degree", "3,3,2", "--param", "uniform", "-o",
+        ])
+        .arg(&npz)
+        .assert()
+        .success();
+    assert_eq!(&fs::read(&npz).unwrap()[..2], b"PK", "a zip archive");
+    assert_eq!(eval_at(&npz), eval_at(&json));
+    // make bspline-tensor: the net of that spline's values as control points, both ways
+    let (mj, mz) = (d.path().join("made.json"), d.path().join("made.npz"));
+    for out in [&mj, &mz] {
+        lekalo()
+            .args(["make", "bspline-tensor", "--control"])
+            .arg(d.path().join("values.txt"))
+            .args(["--net", "5x4x3", "--degree", "2,2,1", "-o"])
+            .arg(out)
+            .assert()
+            .success();
+    }
+    assert_eq!(&fs::read(&mz).unwrap()[..2], b"PK", "a zip archive");
+    assert_eq!(eval_at(&mz), eval_at(&mj));
+    // any other format is refused before the spline is computed, naming both
+    lekalo()
+        .arg("interpolate")
+        .arg(d.path().join("values.txt"))
+        .args(["--grid", "5x4x3", "-o"])
+        .arg(d.path().join("t.csv"))
+        .assert()
+        .code(2)
+        .stderr(contains("written as json or npz, not \"csv\""));
+    assert!(!d.path().join("t.csv").exists());
+}
