@@ -150,6 +150,33 @@ pub(crate) fn solve_tridiagonal(m: Tridiagonal<'_>, b: &mut [f64], ncols: usize)
     Ok(())
 }
 
+/// 2^500: the size of a minor beyond which it is brought back by this exact power of two.
+const BIG: f64 = f64::from_bits((1023 + 500) << 52);
+
+/// 2^−500, the reciprocal of [`BIG`].
+const SMALL: f64 = f64::from_bits((1023 - 500) << 52);
+
+/// The next minor of an elimination, `μ' = d·μ − c·μ₋` (the determinant of one more row and
+/// column, expanded along the new row: its diagonal `d`, the product `c` of the two entries
+/// that couple it to the previous row), and `μ`, both rescaled together by 2^∓500 (exact) when
+/// `μ'` leaves [2^−500, 2^500]: their ratio, the new pivot, is unchanged, and one that still
+/// overflows gives an infinite pivot, which the callers refuse. A multiplication and a
+/// subtraction on the chain from row to row, where the pivot recurrence `p' = d − c/p` takes
+/// a division.
+#[inline(always)]
+pub(crate) fn next_minor(d: f64, c: f64, minor: f64, prev: f64) -> (f64, f64) {
+    let (mut next, mut minor) = (d * minor - c * prev, minor);
+    let size = next.abs();
+    if size > BIG {
+        next *= SMALL;
+        minor *= SMALL;
+    } else if size < SMALL && size != 0.0 {
+        next *= BIG;
+        minor *= BIG;
+    }
+    (next, minor)
+}
+
 /// Solves `A·X = B` in place (`b`: `n` rows of `ncols`) by Gaussian elimination without row
 /// swaps, when every pivot `p_i` is positive and finite; returns `false`, `b` untouched, when
 /// one is not (the caller then pivots: [`solve_tridiagonal`]). The pivots are the ratios
@@ -179,19 +206,9 @@ pub(crate) fn solve_unpivoted(
     // the pivots, into recip
     let (mut q_prev, mut q) = (1.0_f64, d(0));
     recip[0] = q;
-    // powers of two (exact): a minor beyond 2^±500 is scaled back with its predecessor; one that
-    // still overflows gives an infinite pivot, refused below
-    let (big, small) = (2.0_f64.powi(500), 2.0_f64.powi(-500));
     for i in 0..n - 1 {
-        let mut next = d(i + 1) * q - (dl(i) * du(i)) * q_prev;
-        let size = next.abs();
-        if size > big {
-            next *= small;
-            q *= small;
-        } else if size < small && size != 0.0 {
-            next *= big;
-            q *= big;
-        }
+        let next;
+        (next, q) = next_minor(d(i + 1), dl(i) * du(i), q, q_prev);
         recip[i + 1] = next / q;
         q_prev = q;
         q = next;

@@ -15,14 +15,7 @@
 //! The numerical kernel is hand-written because it is the product: no linear-algebra crate
 //! eliminates a tridiagonal system from both ends, or reads its entries where they are formed.
 
-use super::tridiagonal::Bands;
-
-/// 2^500: the size of a minor beyond which it is brought back by this exact power of two (the
-/// entries of the matrix below 2^500 keep every product finite).
-const BIG: f64 = f64::from_bits((1023 + 500) << 52);
-
-/// 2^−500, the reciprocal of [`BIG`].
-const SMALL: f64 = f64::from_bits((1023 - 500) << 52);
+use super::tridiagonal::{next_minor, Bands};
 
 /// One elimination's state at its latest row: the last two minors of the eliminated part (the
 /// determinants of its leading rows and columns, or trailing for the upward one), the
@@ -50,23 +43,11 @@ impl Sweep {
 
     /// One row further: the row's diagonal `d`, the product `c` of the two entries that couple
     /// it to the previous row, its entry `a` in the previous row's column and its right-hand
-    /// side `rhs`. The minor `μ' = d·μ − c·μ₋` (the determinant expanded along the new row)
-    /// takes a multiplication and a subtraction on the chain where the pivot recurrence
-    /// `p' = d − c/p` would take a division; both minors are rescaled together by an exact
-    /// power of two as they grow or shrink. The reduced right-hand side is
+    /// side `rhs`; the minors by [`next_minor`], the reduced right-hand side
     /// `rhs − (a/p)·value`.
     #[inline(always)]
     fn step(&mut self, d: f64, c: f64, a: f64, rhs: f64) {
-        let mut next = d * self.minor - c * self.prev;
-        let mut minor = self.minor;
-        let size = next.abs();
-        if size > BIG {
-            next *= SMALL;
-            minor *= SMALL;
-        } else if size < SMALL && size != 0.0 {
-            next *= BIG;
-            minor *= BIG;
-        }
+        let (next, minor) = next_minor(d, c, self.minor, self.prev);
         self.value = rhs - (a * self.recip) * self.value;
         let recip = minor / next;
         self.prev = minor;

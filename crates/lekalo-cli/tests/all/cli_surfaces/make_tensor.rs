@@ -145,15 +145,12 @@ fn a_degree_one_net_evaluates_as_its_multilinear_interpolant() {
         .collect();
     let npy = d.path().join("net.npy");
     fs::write(&npy, super::tensor::npy(&[3, 2, 4, 2], &flat)).unwrap();
-    let out = lekalo()
-        .args(["make", "bspline-tensor", "--control"])
-        .arg(&npy)
-        .args(["--net", "3x2x4", "--degree", "1"])
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
+    let out = crate::common::output_of(
+        lekalo()
+            .args(["make", "bspline-tensor", "--control"])
+            .arg(&npy)
+            .args(["--net", "3x2x4", "--degree", "1"]),
+    );
     assert_eq!(String::from_utf8(out).unwrap(), text);
 }
 
@@ -193,16 +190,7 @@ fn given_knots_and_degrees_per_direction_are_kept() {
         &["--degree", "2,1,2", "--knots-in", "3=0,0,0,0.25,1,1,1"],
         "q.json",
     );
-    let out = lekalo()
-        .arg("info")
-        .arg(&t)
-        .arg("--json")
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
-    let j: serde_json::Value = serde_json::from_slice(&out).unwrap();
+    let j = crate::common::json_of(lekalo().arg("info").arg(&t).arg("--json"));
     assert_eq!(j["degrees"], serde_json::json!([2, 1, 2]));
     assert_eq!(
         j["knots"],
@@ -262,17 +250,14 @@ fn a_net_of_two_sizes_is_the_surface_of_bspline_surface() {
     )
     .unwrap();
     let make = |args: &[&str]| {
-        lekalo()
-            .arg("make")
-            .args(args)
-            .arg("--control")
-            .arg(&net)
-            .args(["--net", "3x3"])
-            .assert()
-            .success()
-            .get_output()
-            .stdout
-            .clone()
+        crate::common::output_of(
+            lekalo()
+                .arg("make")
+                .args(args)
+                .arg("--control")
+                .arg(&net)
+                .args(["--net", "3x3"]),
+        )
     };
     let surface = make(&["bspline-surface", "--degree", "2", "--degree-v", "1"]);
     assert!(String::from_utf8_lossy(&surface).contains("\"bspline_surface\""));

@@ -155,16 +155,12 @@ pub(crate) fn eval_at(
                 .collect::<Vec<_>>()
         })
         .collect();
-    let out = lekalo()
-        .arg("eval")
-        .arg(file)
-        .args(["--at", &at.join(","), "--json"])
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
-    let j: serde_json::Value = serde_json::from_slice(&out).unwrap();
+    let j = json_of(
+        lekalo()
+            .arg("eval")
+            .arg(file)
+            .args(["--at", &at.join(","), "--json"]),
+    );
     let rows = serde_json::from_value(j["rows"].clone()).unwrap();
     (j["columns"].clone(), rows)
 }
