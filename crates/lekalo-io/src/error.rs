@@ -127,7 +127,7 @@ pub enum IoError {
     /// the message says what, then how to raise it in the command line's words
     /// ([`Limit::option`]); other front ends word the fix in their own vocabulary from the
     /// same fields ([`IoError::message_with`]).
-    #[error("{what}; raise the limit with {} {}", .limit.spelled(*.raise_to, Limit::option), .limit.condition())]
+    #[error("{}", .limit.refusal(what, *.raise_to, Limit::option))]
     OverLimit {
         /// What is above the limit, with the input's name, the count and the limit.
         what: String,
@@ -205,11 +205,7 @@ impl IoError {
                 what,
                 limit,
                 raise_to,
-            } => format!(
-                "{what}; raise the limit with {} {}",
-                limit.spelled(*raise_to, option),
-                limit.condition()
-            ),
+            } => limit.refusal(what, *raise_to, option),
             other => other.to_string(),
         }
     }
@@ -239,6 +235,20 @@ impl Limit {
             Limit::Size => "--max-size ",
             Limit::InputBytes => "--max-input-bytes ",
         }
+    }
+
+    /// `what`, then how to raise this limit: with `option` naming it, to `raise_to` when known.
+    fn refusal(
+        self,
+        what: &str,
+        raise_to: Option<u64>,
+        option: impl Fn(Limit) -> &'static str,
+    ) -> String {
+        format!(
+            "{what}; raise the limit with {} {}",
+            self.spelled(raise_to, option),
+            self.condition()
+        )
     }
 
     /// When raising the limit is the fix.
