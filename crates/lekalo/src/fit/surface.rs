@@ -252,6 +252,96 @@ pub fn surface_scattered_least_squares_with_progress(
     penalty: f64,
     progress: &Progress<'_>,
 ) -> Result<ScatteredSurfaceFit> {
+    let ScatteredNormal {
+        a,
+        mut rhs,
+        center,
+        net: (nu, nv),
+        band,
+    } = scattered_normal_equations(data, weights, (p, q), (ku, kv), penalty, progress)?;
+    let (n, vd, tu) = (data.len(), data.dim() - 2, ku.as_slice());
+    let total = n.saturating_add(nu * nv);
+    let mut f = a;
+    let every = Progress::items_per_step(((band + 1) * (band + 1)) as u64);
+    let factored = f.factor_with(|i| {
+        if i % every == 0 {
+            progress.step(WORK, (n + i) as u64, total as u64)
+        } else {
+            Ok(())
+        }
+    })?;
+    if let Err(i) = factored {
+        let ci = i / nv;
+        return Err(Error::SchoenbergWhitney {
+            basis: i,
+            start: tu[ci],
+            end: tu[ci + p + 1],
+        });
+    }
+    f.solve(&mut rhs, vd);
+    for c in rhs.chunks_exact_mut(vd) {
+        for (x, o) in c.iter_mut().zip(&center) {
+            *x += o;
+        }
+    }
+    let surface = BSplineSurface::from_knot_vectors(
+        p,
+        q,
+        ku.clone(),
+        kv.clone(),
+        Points::from_flat(vd, rhs)?,
+        (nu, nv),
+    )?;
+    let mut residuals = Vec::with_capacity(n);
+    let mut weighted_rss = 0.0;
+    let mut out = vec![0.0; vd];
+    for (k, row) in data.iter().enumerate() {
+        surface.eval_into(row[0], row[1], &mut out)?;
+        let r: f64 = out
+            .iter()
+            .zip(&row[2..])
+            .map(|(s, z)| (s - z) * (s - z))
+            .sum::<f64>();
+        weighted_rss += weights.map_or(1.0, |w| w[k]) * r;
+        residuals.push(r.sqrt());
+    }
+    // the fit is complete: a flag set this late does not discard it
+    let _ = progress.step(WORK, total as u64, total as u64);
+    Ok(ScatteredSurfaceFit {
+        surface,
+        residuals,
+        weighted_rss,
+    })
+}
+
+/// What scattered least squares reports its steps as.
+const WORK: &str = "scattered surface fit (points, then rows of the normal matrix)";
+
+/// The normal equations of [`surface_scattered_least_squares`]: `BᵀWB + penalty·DᵀD` (upper
+/// band, order `i·n_v + j`), `BᵀW(z − center)` with one column per value, the values' shift
+/// (the first point's), the net's size and the band's half-width.
+pub(crate) struct ScatteredNormal {
+    pub(crate) a: SymBand,
+    pub(crate) rhs: Vec<f64>,
+    pub(crate) center: Vec<f64>,
+    pub(crate) net: (usize, usize),
+    pub(crate) band: usize,
+}
+
+/// The normal equations of [`surface_scattered_least_squares`] after checking its arguments,
+/// reporting each point added to `progress` (the first `data.len()` of `data.len() + n_u n_v`
+/// steps).
+///
+/// # Errors
+/// The argument errors of [`surface_scattered_least_squares`] and [`Error::Cancelled`].
+pub(crate) fn scattered_normal_equations(
+    data: PointsRef<'_>,
+    weights: Option<&[f64]>,
+    (p, q): (usize, usize),
+    (ku, kv): (&KnotVector, &KnotVector),
+    penalty: f64,
+    progress: &Progress<'_>,
+) -> Result<ScatteredNormal> {
     let dim = data.dim();
     if dim < 3 {
         return Err(Error::Dimension {
@@ -330,7 +420,6 @@ pub fn surface_scattered_least_squares_with_progress(
     let mut idx = Vec::with_capacity((p + 1) * (q + 1));
     let mut val = Vec::with_capacity((p + 1) * (q + 1));
     let (tu, tv) = (ku.as_slice(), kv.as_slice());
-    const WORK: &str = "scattered surface fit (points, then rows of the normal matrix)";
     let total = n.saturating_add(m);
     let stopped = Cell::new(None);
     let cost = ((p + 1) * (q + 1)).pow(2) as u64;
@@ -392,55 +481,11 @@ pub fn surface_scattered_least_squares_with_progress(
     if let Some(e) = stopped.take() {
         return Err(e);
     }
-    let mut f = a;
-    let every = Progress::items_per_step(((band + 1) * (band + 1)) as u64);
-    let factored = f.factor_with(|i| {
-        if i % every == 0 {
-            progress.step(WORK, (n + i) as u64, total as u64)
-        } else {
-            Ok(())
-        }
-    })?;
-    if let Err(i) = factored {
-        let ci = i / nv;
-        return Err(Error::SchoenbergWhitney {
-            basis: i,
-            start: tu[ci],
-            end: tu[ci + p + 1],
-        });
-    }
-    f.solve(&mut rhs, vd);
-    for c in rhs.chunks_exact_mut(vd) {
-        for (x, o) in c.iter_mut().zip(&center) {
-            *x += o;
-        }
-    }
-    let surface = BSplineSurface::from_knot_vectors(
-        p,
-        q,
-        ku.clone(),
-        kv.clone(),
-        Points::from_flat(vd, rhs)?,
-        (nu, nv),
-    )?;
-    let mut residuals = Vec::with_capacity(n);
-    let mut weighted_rss = 0.0;
-    let mut out = vec![0.0; vd];
-    for (k, row) in data.iter().enumerate() {
-        surface.eval_into(row[0], row[1], &mut out)?;
-        let r: f64 = out
-            .iter()
-            .zip(&row[2..])
-            .map(|(s, z)| (s - z) * (s - z))
-            .sum::<f64>();
-        weighted_rss += weights.map_or(1.0, |w| w[k]) * r;
-        residuals.push(r.sqrt());
-    }
-    // the fit is complete: a flag set this late does not discard it
-    let _ = progress.step(WORK, total as u64, total as u64);
-    Ok(ScatteredSurfaceFit {
-        surface,
-        residuals,
-        weighted_rss,
+    Ok(ScatteredNormal {
+        a,
+        rhs,
+        center,
+        net: (nu, nv),
+        band,
     })
 }

@@ -388,131 +388,173 @@ impl ConeProgram {
         cone_rows: &[([Row; 3], usize)],
     ) -> std::result::Result<Vec<f64>, Failure> {
         let n = self.p.n;
-        let nv = n + cone_rows.len();
         // P: upper triangle, column by column
         let (b, w) = (self.p.b, self.p.b + 1);
-        let pmax = (0..n).fold(0.0_f64, |m, i| m.max(self.p.a[i * w].abs()));
-        let pscale = if pmax > 0.0 { 1.0 / pmax } else { 1.0 };
-        let mut colptr = Vec::with_capacity(nv + 1);
+        let mut colptr = Vec::with_capacity(n + 1);
         let mut rowval = Vec::new();
         let mut nzval = Vec::new();
         colptr.push(0);
-        for j in 0..nv {
-            if j < n {
-                for i in j.saturating_sub(b)..=j {
-                    let v = self.p.a[i * w + j - i];
-                    if v != 0.0 {
-                        rowval.push(i);
-                        nzval.push(v * pscale);
-                    }
+        for j in 0..n {
+            for i in j.saturating_sub(b)..=j {
+                let v = self.p.a[i * w + j - i];
+                if v != 0.0 {
+                    rowval.push(i);
+                    nzval.push(v);
                 }
             }
             colptr.push(rowval.len());
         }
-        let pm = CscMatrix::new(nv, nv, colptr, rowval, nzval);
-        let mut q: Vec<f64> = self.q.iter().map(|v| v * pscale).collect();
-        q.resize(nv, 0.0);
-        // rows: equalities, inequalities, cones; each row (cone) scaled to unit largest entry
-        let mut rows: Vec<Row> = Vec::new();
-        let mut owners = Vec::new();
-        let unit = |mut r: Row| {
-            let m = r.max_abs();
+        let upper = SparseUpper {
+            n,
+            colptr,
+            rowval,
+            nzval,
+        };
+        solve_sparse(&upper, &self.q, equalities, inequalities, cone_rows)
+    }
+}
+
+/// The upper triangle of a symmetric `n × n` matrix in compressed columns (rows sorted within
+/// each column): the objective of a program whose normal matrix is not banded, as a surface's
+/// (block-banded, `docs/theory/fitting.md#shape-constraints-of-surfaces`).
+#[derive(Debug, Clone)]
+pub(crate) struct SparseUpper {
+    pub(crate) n: usize,
+    pub(crate) colptr: Vec<usize>,
+    pub(crate) rowval: Vec<usize>,
+    pub(crate) nzval: Vec<f64>,
+}
+
+/// Clarabel on `½ xᵀPx + qᵀx` over the `P.n` variables and one auxiliary per cone, with the
+/// rows given (each scaled to unit largest coefficient, `P` and `q` by `P`'s largest diagonal
+/// entry); the variables, then the multipliers of the rows in the order given (equalities,
+/// inequalities, cones), or why not.
+pub(crate) fn solve_sparse(
+    upper: &SparseUpper,
+    q: &[f64],
+    equalities: &[(Row, usize)],
+    inequalities: &[(Row, usize)],
+    cone_rows: &[([Row; 3], usize)],
+) -> std::result::Result<Vec<f64>, Failure> {
+    let n = upper.n;
+    let nv = n + cone_rows.len();
+    let pmax = (0..n).fold(0.0_f64, |m, j| {
+        (upper.colptr[j]..upper.colptr[j + 1])
+            .filter(|&k| upper.rowval[k] == j)
+            .fold(m, |m, k| m.max(upper.nzval[k].abs()))
+    });
+    let pscale = if pmax > 0.0 { 1.0 / pmax } else { 1.0 };
+    let mut colptr = upper.colptr.clone();
+    colptr.resize(nv + 1, upper.rowval.len());
+    let pm = CscMatrix::new(
+        nv,
+        nv,
+        colptr,
+        upper.rowval.clone(),
+        upper.nzval.iter().map(|v| v * pscale).collect(),
+    );
+    let mut q: Vec<f64> = q.iter().map(|v| v * pscale).collect();
+    q.resize(nv, 0.0);
+    // rows: equalities, inequalities, cones; each row (cone) scaled to unit largest entry
+    let mut rows: Vec<Row> = Vec::new();
+    let mut owners = Vec::new();
+    let unit = |mut r: Row| {
+        let m = r.max_abs();
+        if m > 0.0 {
+            r.scale(1.0 / m);
+        }
+        r
+    };
+    for (r, o) in equalities.iter().chain(inequalities) {
+        rows.push(unit(r.clone()));
+        owners.push(*o);
+    }
+    for (cone, o) in cone_rows {
+        let m = cone.iter().fold(0.0_f64, |m, r| m.max(r.max_abs()));
+        for r in cone {
+            let mut r = r.clone();
             if m > 0.0 {
                 r.scale(1.0 / m);
             }
-            r
-        };
-        for (r, o) in equalities.iter().chain(inequalities) {
-            rows.push(unit(r.clone()));
+            rows.push(r);
             owners.push(*o);
         }
-        for (cone, o) in cone_rows {
-            let m = cone.iter().fold(0.0_f64, |m, r| m.max(r.max_abs()));
-            for r in cone {
-                let mut r = r.clone();
-                if m > 0.0 {
-                    r.scale(1.0 / m);
-                }
-                rows.push(r);
-                owners.push(*o);
-            }
-        }
-        // A x + s = b with s = g(x): A = −coef, b = constant
-        let mut ii = Vec::new();
-        let mut jj = Vec::new();
-        let mut vv = Vec::new();
-        let mut bvec = Vec::with_capacity(rows.len());
-        for (k, r) in rows.iter().enumerate() {
-            for (i, &c) in r.coef.iter().enumerate() {
-                if c != 0.0 {
-                    ii.push(k);
-                    jj.push(r.first + i);
-                    vv.push(-c);
-                }
-            }
-            if let Some((a, c)) = r.aux {
+    }
+    // A x + s = b with s = g(x): A = −coef, b = constant
+    let mut ii = Vec::new();
+    let mut jj = Vec::new();
+    let mut vv = Vec::new();
+    let mut bvec = Vec::with_capacity(rows.len());
+    for (k, r) in rows.iter().enumerate() {
+        for (i, &c) in r.coef.iter().enumerate() {
+            if c != 0.0 {
                 ii.push(k);
-                jj.push(n + a);
+                jj.push(r.first + i);
                 vv.push(-c);
             }
-            bvec.push(r.constant);
         }
-        let am = CscMatrix::new_from_triplets(rows.len(), nv, ii, jj, vv);
-        let mut cones = Vec::new();
-        if !equalities.is_empty() {
-            cones.push(SupportedConeT::ZeroConeT(equalities.len()));
+        if let Some((a, c)) = r.aux {
+            ii.push(k);
+            jj.push(n + a);
+            vv.push(-c);
         }
-        if !inequalities.is_empty() {
-            cones.push(SupportedConeT::NonnegativeConeT(inequalities.len()));
+        bvec.push(r.constant);
+    }
+    let am = CscMatrix::new_from_triplets(rows.len(), nv, ii, jj, vv);
+    let mut cones = Vec::new();
+    if !equalities.is_empty() {
+        cones.push(SupportedConeT::ZeroConeT(equalities.len()));
+    }
+    if !inequalities.is_empty() {
+        cones.push(SupportedConeT::NonnegativeConeT(inequalities.len()));
+    }
+    cones.extend(
+        cone_rows
+            .iter()
+            .map(|_| SupportedConeT::SecondOrderConeT(3)),
+    );
+    // an equality-constrained run (the polish) is one Newton step: refine its linear solve
+    // to the last digit
+    let polish = inequalities.is_empty() && cone_rows.is_empty();
+    let refine = if polish { 1e-16 } else { 1e-13 };
+    let settings = DefaultSettingsBuilder::default()
+        .verbose(false)
+        .iterative_refinement_reltol(refine)
+        .iterative_refinement_abstol(refine)
+        .iterative_refinement_max_iter(if polish { 50 } else { 10 })
+        .tol_gap_abs(SOLVER_TOL)
+        .tol_gap_rel(SOLVER_TOL)
+        .tol_feas(SOLVER_TOL)
+        .tol_infeas_abs(1e-10)
+        .tol_infeas_rel(1e-10)
+        .max_iter(400)
+        .build()
+        .map_err(|e| Failure::Status(format!("solver settings: {e:?}")))?;
+    let mut solver = DefaultSolver::new(&pm, &q, &am, &bvec, &cones, settings)
+        .map_err(|e| Failure::Status(format!("solver set-up: {e}")))?;
+    solver.solve();
+    let sol = &solver.solution;
+    match sol.status {
+        SolverStatus::Solved | SolverStatus::AlmostSolved => {
+            let mut out = sol.x.clone();
+            // the multipliers of the rows, in the order given (for the polish's signs)
+            out.extend(&sol.z);
+            Ok(out)
         }
-        cones.extend(
-            cone_rows
+        SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
+            let zmax = sol.z.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            let mut conflict: Vec<usize> = sol
+                .z
                 .iter()
-                .map(|_| SupportedConeT::SecondOrderConeT(3)),
-        );
-        // an equality-constrained run (the polish) is one Newton step: refine its linear solve
-        // to the last digit
-        let polish = inequalities.is_empty() && cone_rows.is_empty();
-        let refine = if polish { 1e-16 } else { 1e-13 };
-        let settings = DefaultSettingsBuilder::default()
-            .verbose(false)
-            .iterative_refinement_reltol(refine)
-            .iterative_refinement_abstol(refine)
-            .iterative_refinement_max_iter(if polish { 50 } else { 10 })
-            .tol_gap_abs(SOLVER_TOL)
-            .tol_gap_rel(SOLVER_TOL)
-            .tol_feas(SOLVER_TOL)
-            .tol_infeas_abs(1e-10)
-            .tol_infeas_rel(1e-10)
-            .max_iter(400)
-            .build()
-            .map_err(|e| Failure::Status(format!("solver settings: {e:?}")))?;
-        let mut solver = DefaultSolver::new(&pm, &q, &am, &bvec, &cones, settings)
-            .map_err(|e| Failure::Status(format!("solver set-up: {e}")))?;
-        solver.solve();
-        let sol = &solver.solution;
-        match sol.status {
-            SolverStatus::Solved | SolverStatus::AlmostSolved => {
-                let mut out = sol.x.clone();
-                // the multipliers of the rows, in the order given (for the polish's signs)
-                out.extend(&sol.z);
-                Ok(out)
-            }
-            SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
-                let zmax = sol.z.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-                let mut conflict: Vec<usize> = sol
-                    .z
-                    .iter()
-                    .zip(&owners)
-                    .filter(|(z, _)| z.abs() > CERTIFICATE_RTOL * zmax)
-                    .map(|(_, &o)| o)
-                    .collect();
-                conflict.sort_unstable();
-                conflict.dedup();
-                Err(Failure::Infeasible(conflict))
-            }
-            s => Err(Failure::Status(format!("{s:?}"))),
+                .zip(&owners)
+                .filter(|(z, _)| z.abs() > CERTIFICATE_RTOL * zmax)
+                .map(|(_, &o)| o)
+                .collect();
+            conflict.sort_unstable();
+            conflict.dedup();
+            Err(Failure::Infeasible(conflict))
         }
+        s => Err(Failure::Status(format!("{s:?}"))),
     }
 }
 
