@@ -21,6 +21,7 @@
 //! | `check.rs` | [`shape_violations`], [`SHAPE_RTOL`]: the exact check of a curve against the constraints, and the scales it is measured in (crate-private otherwise) |
 //! | `working_set.rs` | the cone program on a working set of pieces grown until its optimum keeps every row, the polish and the exact check of its answer (crate-private) |
 //! | `fits.rs` | [`constrained_least_squares`], [`constrained_smoothing_spline`], [`constrained_smoothing_condition`]: the unconstrained fit first, the working set when it breaks a constraint |
+//! | `surface/` | [`constrained_surface_grid_least_squares`], [`constrained_surface_scattered_least_squares`], [`surface_shape_violations`]: surfaces `z(u, v)` monotone per direction and bounded, by linear Bernstein conditions on each knot cell and the same solver (`program.rs`'s sparse entry) |
 
 mod bernstein;
 mod check;
@@ -29,6 +30,7 @@ mod face_rows;
 mod fits;
 mod program;
 mod row;
+mod surface;
 mod working_set;
 
 pub use check::{shape_violations, SHAPE_RTOL};
@@ -39,6 +41,10 @@ pub use fits::{
     constrained_least_squares, constrained_smoothing_condition,
     constrained_smoothing_condition_with_progress, constrained_smoothing_spline,
     constrained_smoothing_spline_with_progress, CONDITION_RTOL,
+};
+pub use surface::{
+    constrained_surface_grid_least_squares, constrained_surface_scattered_least_squares,
+    surface_shape_violations, SurfaceShape, SurfaceShapeConstraints,
 };
 
 #[cfg(test)]

@@ -1,0 +1,492 @@
+//! Tests of the shape-constrained surface fits: the shapes hold (Bernstein conditions and dense
+//! samples), inactive constraints change nothing, infeasible bounds are named, and the answer
+//! meets the optimality (KKT) conditions of its quadratic program, checked by an independent
+//! dense computation.
+
+use super::cells::Space;
+use super::*;
+use crate::basis::{basis_funs_into, BasisScratch};
+use crate::error::Error;
+use crate::fit::{surface_grid_least_squares_at, surface_scattered_least_squares};
+use crate::knots::KnotVector;
+use crate::points::PointsRef;
+use crate::{BSplineSurface, Direction};
+
+/// A table rising in `u` and `v`, with a ripple in `u` strong enough to make the plain fit dip.
+fn rippled_grid(nu: usize, nv: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let u: Vec<f64> = (0..nu).map(|i| i as f64 / (nu - 1) as f64).collect();
+    let v: Vec<f64> = (0..nv).map(|j| j as f64 / (nv - 1) as f64).collect();
+    let mut z = Vec::with_capacity(nu * nv);
+    for (i, &x) in u.iter().enumerate() {
+        for (j, &y) in v.iter().enumerate() {
+            let noise = 0.15 * ((7 * i + 3 * j) as f64 * 1.7).sin();
+            z.push(x + 0.5 * y * y + 0.25 * (9.0 * x).sin() + noise);
+        }
+    }
+    (u, v, z)
+}
+
+fn both_increasing() -> SurfaceShapeConstraints {
+    SurfaceShapeConstraints::new()
+        .with(SurfaceShape::Increasing(Direction::U))
+        .with(SurfaceShape::Increasing(Direction::V))
+}
+
+/// Values on a dense grid: every step along `u` and along `v` of the right sign, every value
+/// within the bounds.
+fn dense_check(s: &BSplineSurface, c: &SurfaceShapeConstraints, slack: f64) {
+    let m = 121;
+    let ((u0, u1), (v0, v1)) = s.domain();
+    let us: Vec<f64> = (0..m)
+        .map(|k| u0 + (u1 - u0) * k as f64 / (m - 1) as f64)
+        .collect();
+    let vs: Vec<f64> = (0..m)
+        .map(|k| v0 + (v1 - v0) * k as f64 / (m - 1) as f64)
+        .collect();
+    let mut z = vec![0.0; m * m];
+    s.eval_grid(&us, &vs, &mut z).unwrap();
+    for shape in &c.shapes {
+        for i in 0..m {
+            for j in 0..m {
+                let here = z[i * m + j];
+                let ok = match shape {
+                    SurfaceShape::Increasing(Direction::U) if i + 1 < m => {
+                        z[(i + 1) * m + j] >= here - slack
+                    }
+                    SurfaceShape::Decreasing(Direction::U) if i + 1 < m => {
+                        z[(i + 1) * m + j] <= here + slack
+                    }
+                    SurfaceShape::Increasing(Direction::V) if j + 1 < m => {
+                        z[i * m + j + 1] >= here - slack
+                    }
+                    SurfaceShape::Decreasing(Direction::V) if j + 1 < m => {
+                        z[i * m + j + 1] <= here + slack
+                    }
+                    SurfaceShape::AtLeast(v) => here >= v - slack,
+                    SurfaceShape::AtMost(v) => here <= v + slack,
+                    _ => true,
+                };
+                assert!(ok, "{shape} broken at ({}, {}): {here}", us[i], vs[j]);
+            }
+        }
+    }
+}
+
+/// The dense observation matrix of a grid (rows `(i, j)`, columns the net `k·n_v + l`).
+fn grid_design(
+    ku: &KnotVector,
+    kv: &KnotVector,
+    (p, q): (usize, usize),
+    u: &[f64],
+    v: &[f64],
+) -> Vec<Vec<f64>> {
+    let (ncu, ncv) = (ku.len() - p - 1, kv.len() - q - 1);
+    let row_of = |k: &KnotVector, d: usize, n: usize, t: f64| {
+        let mut s = BasisScratch::new(d);
+        let span = k.span_unchecked(d, t);
+        let mut b = vec![0.0; d + 1];
+        basis_funs_into(k.as_slice(), d, span, t, &mut s, &mut b);
+        let mut full = vec![0.0; n];
+        full[span - d..=span].copy_from_slice(&b);
+        full
+    };
+    let mut out = Vec::new();
+    for &x in u {
+        let a = row_of(ku, p, ncu, x);
+        for &y in v {
+            let b = row_of(kv, q, ncv, y);
+            out.push(
+                a.iter()
+                    .flat_map(|ai| b.iter().map(move |bj| ai * bj))
+                    .collect(),
+            );
+        }
+    }
+    out
+}
+
+/// The KKT conditions of `min ½‖Bc − z‖²` subject to `σ(b_cell(c) − v) ≥ 0`, checked densely:
+/// every row feasible; the gradient `Bᵀ(Bc − z)` a non-negative combination of the rows within
+/// `active` of their bound (non-negative least squares by projected gradient, a method
+/// independent of the interior point), so that no feasible direction decreases the objective.
+/// Returns the stationarity residual relative to `‖Bᵀz‖`.
+fn kkt_residual(
+    design: &[Vec<f64>],
+    z: &[f64],
+    s: &BSplineSurface,
+    c: &SurfaceShapeConstraints,
+    active: f64,
+) -> f64 {
+    let (ku, kv) = s.knots();
+    let space = Space {
+        degrees: s.degree(),
+        knots: (ku.as_slice(), kv.as_slice()),
+        net: s.net_size(),
+    };
+    let x = s.control_points().as_slice();
+    let n = x.len();
+    // gradient
+    let mut grad = vec![0.0; n];
+    let mut scale = vec![0.0; n];
+    for (row, zk) in design.iter().zip(z) {
+        let r: f64 = row.iter().zip(x).map(|(a, b)| a * b).sum::<f64>() - zk;
+        for k in 0..n {
+            grad[k] += row[k] * r;
+            scale[k] += row[k] * zk;
+        }
+    }
+    // the active rows as dense vectors (σ·∂b/∂c)
+    let mut rows: Vec<Vec<f64>> = Vec::new();
+    for &shape in &c.shapes {
+        let (sigma, level) = (shape.sign(), shape.level());
+        for r in space.cell_rows(shape) {
+            let g = sigma * (r.eval(x) - level);
+            assert!(g >= -1e-12, "{shape}: row infeasible by {g}");
+            let mut dense = vec![0.0; n];
+            for &(o, w) in &r.terms {
+                dense[r.first + o] = sigma * w;
+            }
+            let norm = dense.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            if g <= active * norm {
+                rows.push(dense.iter().map(|v| v / norm).collect());
+            }
+        }
+    }
+    // min ½‖Aᵀλ − grad‖² over λ ≥ 0 by accelerated projected gradient
+    let m = rows.len();
+    let lip: f64 = rows
+        .iter()
+        .map(|r| r.iter().map(|v| v * v).sum::<f64>())
+        .sum();
+    let mut lam = vec![0.0; m];
+    let mut y = lam.clone();
+    let mut t = 1.0_f64;
+    let at = |l: &[f64]| -> Vec<f64> {
+        let mut out = vec![0.0; n];
+        for (r, li) in rows.iter().zip(l) {
+            for k in 0..n {
+                out[k] += r[k] * li;
+            }
+        }
+        out
+    };
+    for _ in 0..20000 {
+        let res: Vec<f64> = at(&y).iter().zip(&grad).map(|(a, g)| a - g).collect();
+        let next: Vec<f64> = rows
+            .iter()
+            .zip(&y)
+            .map(|(r, yi)| {
+                (yi - r.iter().zip(&res).map(|(a, b)| a * b).sum::<f64>() / lip).max(0.0)
+            })
+            .collect();
+        let t1 = 0.5 * (1.0 + (1.0 + 4.0 * t * t).sqrt());
+        y = next
+            .iter()
+            .zip(&lam)
+            .map(|(a, b)| a + (t - 1.0) / t1 * (a - b))
+            .collect();
+        lam = next;
+        t = t1;
+    }
+    let res = at(&lam)
+        .iter()
+        .zip(&grad)
+        .map(|(a, g)| (a - g) * (a - g))
+        .sum::<f64>()
+        .sqrt();
+    res / scale.iter().map(|v| v * v).sum::<f64>().sqrt()
+}
+
+#[test]
+fn monotone_grid_fit_keeps_its_shape_and_is_optimal() {
+    let (u, v, z) = rippled_grid(16, 12);
+    for (p, q, ncu, ncv) in [(2, 2, 6, 5), (1, 1, 7, 5), (3, 2, 7, 5)] {
+        let (ku, kv) = (
+            KnotVector::clamped_uniform(p, ncu).unwrap(),
+            KnotVector::clamped_uniform(q, ncv).unwrap(),
+        );
+        let values = PointsRef::from_flat(1, &z).unwrap();
+        let c = both_increasing();
+        let free =
+            surface_grid_least_squares_at(values, (16, 12), (p, q), (&u, &v), (&ku, &kv)).unwrap();
+        let before = surface_shape_violations(&free, &c).unwrap();
+        assert!(
+            before[0] > 1e-3,
+            "the plain fit should dip in u: {before:?}"
+        );
+        let s = constrained_surface_grid_least_squares(
+            values,
+            (16, 12),
+            (p, q),
+            (&u, &v),
+            (&ku, &kv),
+            &c,
+        )
+        .unwrap();
+        assert_eq!(surface_shape_violations(&s, &c).unwrap(), vec![0.0, 0.0]);
+        dense_check(&s, &c, 0.0);
+        // optimal: the KKT conditions, and its residual no smaller than the plain fit's
+        let design = grid_design(&ku, &kv, (p, q), &u, &v);
+        let kkt = kkt_residual(&design, &z, &s, &c, 1e-7);
+        assert!(
+            kkt < 1e-9,
+            "degrees ({p}, {q}): stationarity residual {kkt}"
+        );
+        let rss = |s: &BSplineSurface| {
+            let mut out = vec![0.0; z.len()];
+            s.eval_grid(&u, &v, &mut out).unwrap();
+            out.iter()
+                .zip(&z)
+                .map(|(a, b)| (a - b) * (a - b))
+                .sum::<f64>()
+        };
+        assert!(rss(&s) >= rss(&free), "{} < {}", rss(&s), rss(&free));
+        // a feasible point nearby is no better: the constrained fit moved a little towards the
+        // plain one breaks a constraint
+        let mix: Vec<f64> = s
+            .control_points()
+            .as_slice()
+            .iter()
+            .zip(free.control_points().as_slice())
+            .map(|(a, b)| a + 0.01 * (b - a))
+            .collect();
+        let moved = BSplineSurface::from_knot_vectors(
+            p,
+            q,
+            ku.clone(),
+            kv.clone(),
+            crate::Points::from_flat(1, mix).unwrap(),
+            (ncu, ncv),
+        )
+        .unwrap();
+        assert!(surface_shape_violations(&moved, &c)
+            .unwrap()
+            .iter()
+            .any(|v| *v > 0.0));
+    }
+}
+
+#[test]
+fn a_kkt_check_refuses_a_feasible_point_that_is_not_optimal() {
+    // the check itself: a surface that keeps the shapes but is not the optimum fails it
+    let (u, v, z) = rippled_grid(16, 12);
+    let (ku, kv) = (
+        KnotVector::clamped_uniform(2, 6).unwrap(),
+        KnotVector::clamped_uniform(2, 5).unwrap(),
+    );
+    let values = PointsRef::from_flat(1, &z).unwrap();
+    let c = both_increasing();
+    let s =
+        constrained_surface_grid_least_squares(values, (16, 12), (2, 2), (&u, &v), (&ku, &kv), &c)
+            .unwrap();
+    let shrunk: Vec<f64> = s
+        .control_points()
+        .as_slice()
+        .iter()
+        .map(|a| 0.9 * a)
+        .collect();
+    let worse = BSplineSurface::from_knot_vectors(
+        2,
+        2,
+        ku.clone(),
+        kv.clone(),
+        crate::Points::from_flat(1, shrunk).unwrap(),
+        (6, 5),
+    )
+    .unwrap();
+    assert_eq!(
+        surface_shape_violations(&worse, &c).unwrap(),
+        vec![0.0, 0.0]
+    );
+    let design = grid_design(&ku, &kv, (2, 2), &u, &v);
+    assert!(kkt_residual(&design, &z, &worse, &c, 1e-7) > 1e-3);
+}
+
+#[test]
+fn inactive_constraints_return_the_plain_fit() {
+    let u: Vec<f64> = (0..10).map(|i| i as f64 / 9.0).collect();
+    let v: Vec<f64> = (0..8).map(|j| j as f64 / 7.0).collect();
+    let z: Vec<f64> = u
+        .iter()
+        .flat_map(|&x| v.iter().map(move |&y| 1.0 + x + x * y + 0.3 * y))
+        .collect();
+    let (ku, kv) = (
+        KnotVector::clamped_uniform(3, 6).unwrap(),
+        KnotVector::clamped_uniform(2, 4).unwrap(),
+    );
+    let values = PointsRef::from_flat(1, &z).unwrap();
+    let c = both_increasing()
+        .with(SurfaceShape::AtLeast(0.5))
+        .with(SurfaceShape::AtMost(4.0));
+    let free =
+        surface_grid_least_squares_at(values, (10, 8), (3, 2), (&u, &v), (&ku, &kv)).unwrap();
+    let s =
+        constrained_surface_grid_least_squares(values, (10, 8), (3, 2), (&u, &v), (&ku, &kv), &c)
+            .unwrap();
+    for (a, b) in s
+        .control_points()
+        .as_slice()
+        .iter()
+        .zip(free.control_points().as_slice())
+    {
+        assert!((a - b).abs() <= 1e-12, "{a} vs {b}");
+    }
+    // scattered too
+    let data: Vec<f64> = (0..150)
+        .flat_map(|k| {
+            let (x, y) = (
+                (k as f64 * 0.618_034).fract(),
+                (k as f64 * 0.414_214).fract(),
+            );
+            [x, y, 1.0 + x + x * y + 0.3 * y]
+        })
+        .collect();
+    let pts = PointsRef::from_flat(3, &data).unwrap();
+    let free = surface_scattered_least_squares(pts, None, (3, 2), (&ku, &kv), 0.0).unwrap();
+    let f = constrained_surface_scattered_least_squares(pts, None, (3, 2), (&ku, &kv), 0.0, &c)
+        .unwrap();
+    assert_eq!(f, free);
+}
+
+#[test]
+fn bounds_hold_on_the_grid_and_on_scattered_data() {
+    let (u, v, z) = rippled_grid(16, 12);
+    let (ku, kv) = (
+        KnotVector::clamped_uniform(2, 6).unwrap(),
+        KnotVector::clamped_uniform(2, 5).unwrap(),
+    );
+    let values = PointsRef::from_flat(1, &z).unwrap();
+    let c = SurfaceShapeConstraints::new()
+        .with(SurfaceShape::AtLeast(0.0))
+        .with(SurfaceShape::AtMost(1.2));
+    let free =
+        surface_grid_least_squares_at(values, (16, 12), (2, 2), (&u, &v), (&ku, &kv)).unwrap();
+    let before = surface_shape_violations(&free, &c).unwrap();
+    assert!(before.iter().all(|v| *v > 1e-2), "{before:?}");
+    let s =
+        constrained_surface_grid_least_squares(values, (16, 12), (2, 2), (&u, &v), (&ku, &kv), &c)
+            .unwrap();
+    assert_eq!(surface_shape_violations(&s, &c).unwrap(), vec![0.0, 0.0]);
+    dense_check(&s, &c, 0.0);
+    let design = grid_design(&ku, &kv, (2, 2), &u, &v);
+    assert!(kkt_residual(&design, &z, &s, &c, 1e-7) < 1e-9);
+    // scattered, with weights and with a penalty, decreasing in v and non-negative
+    let data: Vec<f64> = (0..300)
+        .flat_map(|k| {
+            let (x, y) = (
+                (k as f64 * 0.618_034).fract(),
+                (k as f64 * 0.414_214).fract(),
+            );
+            [x, y, x * (1.0 - y) + 0.2 * (31.0 * k as f64).sin()]
+        })
+        .collect();
+    let w: Vec<f64> = (0..300).map(|k| 1.0 + (k % 3) as f64).collect();
+    let pts = PointsRef::from_flat(3, &data).unwrap();
+    let c = SurfaceShapeConstraints::new()
+        .with(SurfaceShape::Decreasing(Direction::V))
+        .with(SurfaceShape::AtLeast(0.0));
+    let k = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 0.4, 0.7, 1.0, 1.0, 1.0, 1.0]).unwrap();
+    for penalty in [0.0, 1e-2] {
+        let free =
+            surface_scattered_least_squares(pts, Some(&w), (3, 3), (&k, &k), penalty).unwrap();
+        assert!(surface_shape_violations(&free.surface, &c)
+            .unwrap()
+            .iter()
+            .any(|v| *v > 1e-3));
+        let f = constrained_surface_scattered_least_squares(
+            pts,
+            Some(&w),
+            (3, 3),
+            (&k, &k),
+            penalty,
+            &c,
+        )
+        .unwrap();
+        assert_eq!(
+            surface_shape_violations(&f.surface, &c).unwrap(),
+            vec![0.0, 0.0]
+        );
+        dense_check(&f.surface, &c, 0.0);
+        assert!(f.weighted_rss >= free.weighted_rss);
+        assert_eq!(f.residuals.len(), 300);
+    }
+}
+
+#[test]
+fn contradictory_or_unusable_constraints_are_named() {
+    let (u, v, z) = rippled_grid(8, 8);
+    let k = KnotVector::clamped_uniform(2, 4).unwrap();
+    let values = PointsRef::from_flat(1, &z).unwrap();
+    let c = SurfaceShapeConstraints::new()
+        .with(SurfaceShape::AtLeast(2.0))
+        .with(SurfaceShape::Increasing(Direction::U))
+        .with(SurfaceShape::AtMost(1.0));
+    let e = constrained_surface_grid_least_squares(values, (8, 8), (2, 2), (&u, &v), (&k, &k), &c)
+        .unwrap_err();
+    assert_eq!(
+        e,
+        Error::InfeasibleConstraints {
+            conflicting: vec!["min 2".into(), "max 1".into()]
+        }
+    );
+    // equal bounds leave one surface: the constant
+    let c = SurfaceShapeConstraints::new()
+        .with(SurfaceShape::AtLeast(0.5))
+        .with(SurfaceShape::AtMost(0.5));
+    let s = constrained_surface_grid_least_squares(values, (8, 8), (2, 2), (&u, &v), (&k, &k), &c)
+        .unwrap();
+    assert!(s
+        .control_points()
+        .as_slice()
+        .iter()
+        .all(|c| (c - 0.5).abs() < 1e-9));
+    let c = SurfaceShapeConstraints::new().with(SurfaceShape::AtLeast(f64::NAN));
+    assert!(matches!(
+        constrained_surface_grid_least_squares(values, (8, 8), (2, 2), (&u, &v), (&k, &k), &c),
+        Err(Error::NonFinite { .. })
+    ));
+    let points: Vec<f64> = z.iter().flat_map(|v| [*v, *v]).collect();
+    assert!(matches!(
+        constrained_surface_grid_least_squares(
+            PointsRef::from_flat(2, &points).unwrap(),
+            (8, 8),
+            (2, 2),
+            (&u, &v),
+            (&k, &k),
+            &both_increasing()
+        ),
+        Err(Error::Dimension { .. })
+    ));
+}
+
+#[test]
+fn the_condition_is_exact_for_bilinear_cells_and_sufficient_above() {
+    // degree (1, 1): the coefficients are the corner values, so the least coefficient is the
+    // surface's minimum; degree (2, 2): a surface can be positive with a negative coefficient
+    let k1 = KnotVector::clamped_uniform(1, 2).unwrap();
+    let s = BSplineSurface::from_knot_vectors(
+        1,
+        1,
+        k1.clone(),
+        k1,
+        crate::Points::from_flat(1, vec![0.3, -0.2, 0.5, 0.1]).unwrap(),
+        (2, 2),
+    )
+    .unwrap();
+    let c = SurfaceShapeConstraints::new().with(SurfaceShape::AtLeast(0.0));
+    assert!((surface_shape_violations(&s, &c).unwrap()[0] - 0.2).abs() < 1e-15);
+    let k2 = KnotVector::clamped_uniform(2, 3).unwrap();
+    // z = (2u − 1)² + 0.1 in u, constant in v: Bernstein (1.1, −0.9, 1.1), minimum 0.1
+    let net: Vec<f64> = [1.1, -0.9, 1.1].iter().flat_map(|&a| [a; 3]).collect();
+    let s = BSplineSurface::from_knot_vectors(
+        2,
+        2,
+        k2.clone(),
+        k2,
+        crate::Points::from_flat(1, net).unwrap(),
+        (3, 3),
+    )
+    .unwrap();
+    assert!(surface_shape_violations(&s, &c).unwrap()[0] > 0.0);
+    dense_check(&s, &c, 0.0);
+}
