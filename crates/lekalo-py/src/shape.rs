@@ -1,12 +1,15 @@
 //! The shape-constraint keyword arguments of the fit functions (`increasing`, `decreasing`,
 //! `convex`, `concave`, `min`, `max`, `through`, `slope_at`, `integral`, `periodic`), read into
 //! the library's
-//! [`ShapeConstraints`] (`docs/theory/fitting.md#shape-constraints`). Conversions only.
+//! [`ShapeConstraints`] (`docs/theory/fitting.md#shape-constraints`), and those of the surface
+//! fits (`increasing="u"`, `min=`, …) into [`SurfaceShapeConstraints`]. Conversions only.
 
-use lekalo::fit::{Shape, ShapeConstraints};
+use lekalo::fit::{Shape, ShapeConstraints, SurfaceShape, SurfaceShapeConstraints};
+use lekalo::vocabulary::DIRECTION;
 use pyo3::prelude::*;
 
 use crate::error::bad;
+use crate::words::word;
 
 /// The keyword arguments as given (each `None` when absent).
 #[derive(Default)]
@@ -124,6 +127,69 @@ impl<'py> ShapeArgs<'_, 'py> {
                 Ok(false) => {}
                 Err(_) => return Err(bad("periodic: give True or False".into())),
             }
+        }
+        Ok(c)
+    }
+}
+
+/// The shape keyword arguments of the surface fits (`increasing`, `decreasing`, `min`, `max`),
+/// as given.
+#[derive(Default)]
+pub(crate) struct SurfaceShapeArgs<'a, 'py> {
+    pub(crate) increasing: Option<&'a Bound<'py, PyAny>>,
+    pub(crate) decreasing: Option<&'a Bound<'py, PyAny>>,
+    pub(crate) min: Option<&'a Bound<'py, PyAny>>,
+    pub(crate) max: Option<&'a Bound<'py, PyAny>>,
+}
+
+impl SurfaceShapeArgs<'_, '_> {
+    /// The constraints (`docs/theory/fitting.md#shape-constraints-of-surfaces`): a monotonicity
+    /// is a direction `"u"` or `"v"`, a sequence of them, or `True` (both directions); a bound
+    /// is a number (everywhere).
+    pub(crate) fn constraints(&self) -> PyResult<SurfaceShapeConstraints> {
+        let mut c = SurfaceShapeConstraints::new();
+        for (arg, name) in [
+            (self.increasing, "increasing"),
+            (self.decreasing, "decreasing"),
+        ] {
+            let Some(arg) = arg else { continue };
+            let directions: Vec<String> = if let Ok(on) = arg.extract::<bool>() {
+                if on {
+                    vec!["u".into(), "v".into()]
+                } else {
+                    vec![]
+                }
+            } else if let Ok(d) = arg.extract::<String>() {
+                vec![d]
+            } else if let Ok(list) = arg.extract::<Vec<String>>() {
+                list
+            } else {
+                return Err(bad(format!(
+                    "{name}: give a direction \"u\" or \"v\", a sequence of them (\"u\", \"v\"), \
+                     or True for both"
+                )));
+            };
+            for d in directions {
+                let d = word(&DIRECTION, name, &d)?;
+                c = c.with(if name == "increasing" {
+                    SurfaceShape::Increasing(d)
+                } else {
+                    SurfaceShape::Decreasing(d)
+                });
+            }
+        }
+        for (arg, name) in [(self.min, "min"), (self.max, "max")] {
+            let Some(arg) = arg else { continue };
+            let Ok(v) = arg.extract::<f64>() else {
+                return Err(bad(format!(
+                    "{name}: give a number, the bound of the surface's values everywhere"
+                )));
+            };
+            c = c.with(if name == "min" {
+                SurfaceShape::AtLeast(v)
+            } else {
+                SurfaceShape::AtMost(v)
+            });
         }
         Ok(c)
     }

@@ -765,9 +765,23 @@ def fit_surface_grid(
     v: Optional[ArrayLike] = None,
     tu: Optional[ArrayLike] = None,
     tv: Optional[ArrayLike] = None,
+    increasing: Union[bool, Literal["u", "v"], Sequence[Literal["u", "v"]], None] = None,
+    decreasing: Union[bool, Literal["u", "v"], Sequence[Literal["u", "v"]], None] = None,
+    min: Optional[float] = None,
+    max: Optional[float] = None,
 ) -> BSplineSurface: ...
 def fit_surface_scattered(
-    data: ArrayLike, tu: ArrayLike, tv: ArrayLike, degree: Tuple[int, int] = (3, 3), *, w: Optional[ArrayLike] = None, penalty: float = 0.0
+    data: ArrayLike,
+    tu: ArrayLike,
+    tv: ArrayLike,
+    degree: Tuple[int, int] = (3, 3),
+    *,
+    w: Optional[ArrayLike] = None,
+    penalty: float = 0.0,
+    increasing: Union[bool, Literal["u", "v"], Sequence[Literal["u", "v"]], None] = None,
+    decreasing: Union[bool, Literal["u", "v"], Sequence[Literal["u", "v"]], None] = None,
+    min: Optional[float] = None,
+    max: Optional[float] = None,
 ) -> Tuple[BSplineSurface, Array, float]: ...
 def fit_tensor_grid(
     axes: Sequence[ArrayLike], values: ArrayLike, t: Sequence[ArrayLike], k: Optional[Union[int, Sequence[int]]] = None

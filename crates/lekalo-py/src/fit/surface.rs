@@ -2,6 +2,7 @@
 //! points and over scattered points.
 
 use lekalo::fit::{
+    constrained_surface_grid_least_squares, constrained_surface_scattered_least_squares,
     place_knots as lk_place_knots, surface_grid_least_squares_at, surface_grid_parameters,
     surface_scattered_least_squares,
 };
@@ -13,6 +14,7 @@ use crate::convert::IntPair;
 use crate::convert::{floats, grid_points, vec1, vec_array};
 use crate::error::{bad, lib_err, named};
 use crate::interp::parametrization_or_chord;
+use crate::shape::SurfaceShapeArgs;
 use crate::surfaces::PyBSplineSurface;
 
 /// Least-squares surface over a grid of points `(nu, nv, dim)` with a net of `n_ctrl =
@@ -20,9 +22,13 @@ use crate::surfaces::PyBSplineSurface;
 /// `docs/theory/fitting.md#surfaces`). The parameters of the grid rows and columns are those of
 /// `parametrization` averaged over the grid lines, or given (`u`: `nu` numbers, `v`: `nv`); the
 /// knots are placed over them for `n_ctrl`, or given (`tu`, `tv`, which then set the net's size).
+/// A table of values `z(u, v)` (`dim = 1`, with its coordinates `u` and `v`) may keep shapes on
+/// the whole domain (`docs/theory/fitting.md#shape-constraints-of-surfaces`): `increasing` /
+/// `decreasing` a direction `"u"` or `"v"`, a sequence of them, or `True` for both; `min`, `max`
+/// numbers bounding the values.
 #[pyfunction]
-#[pyo3(signature = (grid, n_ctrl = None, degree = IntPair::of(3, 3), *, parametrization = None, u = None, v = None, tu = None, tv = None),
-       text_signature = "(grid, n_ctrl=None, degree=(3, 3), *, parametrization=None, u=None, v=None, tu=None, tv=None)")]
+#[pyo3(signature = (grid, n_ctrl = None, degree = IntPair::of(3, 3), *, parametrization = None, u = None, v = None, tu = None, tv = None, increasing = None, decreasing = None, min = None, max = None),
+       text_signature = "(grid, n_ctrl=None, degree=(3, 3), *, parametrization=None, u=None, v=None, tu=None, tv=None, increasing=None, decreasing=None, min=None, max=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_surface_grid(
     py: Python<'_>,
@@ -34,7 +40,18 @@ pub(crate) fn fit_surface_grid(
     v: Option<&Bound<'_, PyAny>>,
     tu: Option<&Bound<'_, PyAny>>,
     tv: Option<&Bound<'_, PyAny>>,
+    increasing: Option<&Bound<'_, PyAny>>,
+    decreasing: Option<&Bound<'_, PyAny>>,
+    min: Option<&Bound<'_, PyAny>>,
+    max: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PyBSplineSurface> {
+    let shapes = SurfaceShapeArgs {
+        increasing,
+        decreasing,
+        min,
+        max,
+    }
+    .constraints()?;
     let n_ctrl = n_ctrl.map(|n| n.count("n_ctrl")).transpose()?;
     let degree = degree.count("degree")?;
     let m = parametrization_or_chord(parametrization)?;
@@ -60,6 +77,13 @@ pub(crate) fn fit_surface_grid(
     };
     need_count(&given_knots.0, "tu")?;
     need_count(&given_knots.1, "tv")?;
+    if !shapes.is_empty() && (given_params.0.is_none() || given_params.1.is_none()) {
+        return Err(bad(
+            "increasing, decreasing, min, max: a shape is kept by a table z(u, v); give its \
+             coordinates u= and v= (and a grid of shape (nu, nv, 1))"
+                .into(),
+        ));
+    }
     let inner = py
         .detach(|| {
             let computed = match &given_params {
@@ -83,7 +107,18 @@ pub(crate) fn fit_surface_grid(
                 Some(k) => k.clone(),
                 None => lk_place_knots(vv, degree.1, ncv)?,
             };
-            surface_grid_least_squares_at(pts, (nu, nv), degree, (uu, vv), (&ku, &kv))
+            if shapes.is_empty() {
+                surface_grid_least_squares_at(pts, (nu, nv), degree, (uu, vv), (&ku, &kv))
+            } else {
+                constrained_surface_grid_least_squares(
+                    pts,
+                    (nu, nv),
+                    degree,
+                    (uu, vv),
+                    (&ku, &kv),
+                    &shapes,
+                )
+            }
         })
         .map_err(lib_err)?;
     Ok(PyBSplineSurface { inner })
@@ -94,10 +129,14 @@ pub(crate) fn fit_surface_grid(
 /// weights and a second-difference `penalty` (SciPy's `LSQBivariateSpline(x, y, z, tx, ty,
 /// bbox, kx=p, ky=q)` for `penalty = 0` is `tu` = `p + 1` copies of `bbox[0]`, `tx`, `p + 1`
 /// copies of `bbox[1]`, and `tv` likewise;
-/// `docs/theory/fitting.md#surfaces`). Returns `(surface, residuals, weighted_rss)`.
+/// `docs/theory/fitting.md#surfaces`). Returns `(surface, residuals, weighted_rss)`. Rows
+/// `(u, v, z)` may keep shapes on the whole domain as in [`fit_surface_grid`]: `increasing`,
+/// `decreasing` (`"u"`, `"v"`, both, or `True`), `min`, `max`
+/// (`docs/theory/fitting.md#shape-constraints-of-surfaces`).
 #[pyfunction]
-#[pyo3(signature = (data, tu, tv, degree = IntPair::of(3, 3), *, w = None, penalty = 0.0),
-       text_signature = "(data, tu, tv, degree=(3, 3), *, w=None, penalty=0.0)")]
+#[pyo3(signature = (data, tu, tv, degree = IntPair::of(3, 3), *, w = None, penalty = 0.0, increasing = None, decreasing = None, min = None, max = None),
+       text_signature = "(data, tu, tv, degree=(3, 3), *, w=None, penalty=0.0, increasing=None, decreasing=None, min=None, max=None)")]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_surface_scattered<'py>(
     py: Python<'py>,
     data: &Bound<'py, PyAny>,
@@ -106,7 +145,18 @@ pub(crate) fn fit_surface_scattered<'py>(
     degree: IntPair,
     w: Option<&Bound<'py, PyAny>>,
     penalty: f64,
+    increasing: Option<&Bound<'py, PyAny>>,
+    decreasing: Option<&Bound<'py, PyAny>>,
+    min: Option<&Bound<'py, PyAny>>,
+    max: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineSurface, Bound<'py, PyAny>, f64)> {
+    let shapes = SurfaceShapeArgs {
+        increasing,
+        decreasing,
+        min,
+        max,
+    }
+    .constraints()?;
     let degree = degree.count("degree")?;
     let da = floats(data, "data")?;
     let pts = da.points("data")?;
@@ -114,7 +164,20 @@ pub(crate) fn fit_surface_scattered<'py>(
     let wv = wa.as_ref().map(|w| w.vector("w")).transpose()?;
     let (ku, kv) = (knot_vector(tu)?, knot_vector(tv)?);
     let f = py
-        .detach(|| surface_scattered_least_squares(pts, wv, degree, (&ku, &kv), penalty))
+        .detach(|| {
+            if shapes.is_empty() {
+                surface_scattered_least_squares(pts, wv, degree, (&ku, &kv), penalty)
+            } else {
+                constrained_surface_scattered_least_squares(
+                    pts,
+                    wv,
+                    degree,
+                    (&ku, &kv),
+                    penalty,
+                    &shapes,
+                )
+            }
+        })
         .map_err(lib_err)?;
     Ok((
         PyBSplineSurface { inner: f.surface },

@@ -1,9 +1,10 @@
 //! The shape constraints of `lekalo fit`'s options (`--increasing`, `--convex`, `--min`,
 //! `--through`, `--integral` …), read into the library's `ShapeConstraints`
-//! (`docs/theory/fitting.md#shape-constraints`), for the curve fits and the periodic ones.
+//! (`docs/theory/fitting.md#shape-constraints`), for the curve fits and the periodic ones, and
+//! the surfaces' (`--increasing=u`, `--min V`) into `SurfaceShapeConstraints`.
 
 use anyhow::Result;
-use lekalo::fit::{Shape, ShapeConstraints};
+use lekalo::fit::{Shape, ShapeConstraints, SurfaceShape, SurfaceShapeConstraints};
 
 use super::args::FitArgs;
 use crate::exit::bad_input;
@@ -83,6 +84,70 @@ pub(super) fn shape_constraints(a: &FitArgs) -> Result<ShapeConstraints> {
                 c = c.with_integral(ab[0], ab[1], v[0]);
             }
             _ => return bad_input(format!("--integral: \"{text}\" is not A:B=V")),
+        }
+    }
+    Ok(c)
+}
+
+/// The shape constraints of a surface `z(u, v)` (`--grid NUxNV` or `--scattered`): `--increasing`
+/// and `--decreasing` with a direction `=u`, `=v` or `=u,v` (both when bare), `--min V` and
+/// `--max V` on the whole domain (`docs/theory/fitting.md#shape-constraints-of-surfaces`).
+pub(super) fn surface_shape_constraints(a: &FitArgs) -> Result<SurfaceShapeConstraints> {
+    let curve_only = [
+        (!a.convex.is_empty(), "--convex"),
+        (!a.concave.is_empty(), "--concave"),
+        (!a.through.is_empty(), "--through"),
+        (!a.slope_at.is_empty(), "--slope-at"),
+        (!a.integral.is_empty(), "--integral"),
+    ];
+    if let Some((_, option)) = curve_only.iter().find(|(given, _)| *given) {
+        return bad_input(format!(
+            "{option} is a shape of curves y(x); a surface keeps --increasing[=u|v], \
+             --decreasing[=u|v], --min V and --max V"
+        ));
+    }
+    let mut c = SurfaceShapeConstraints::new();
+    for (list, option) in [
+        (&a.increasing, "--increasing"),
+        (&a.decreasing, "--decreasing"),
+    ] {
+        for text in list {
+            let words: Vec<&str> = if text.is_empty() {
+                vec!["u", "v"]
+            } else {
+                text.split(',').collect()
+            };
+            for w in words {
+                let Ok(d) = lekalo::vocabulary::DIRECTION.parse(w) else {
+                    return bad_input(format!(
+                        "{option}={text}: a surface is monotone in a direction: write \
+                         {option}=u, {option}=v, or {option} alone for both"
+                    ));
+                };
+                c = c.with(if option == "--increasing" {
+                    SurfaceShape::Increasing(d.value)
+                } else {
+                    SurfaceShape::Decreasing(d.value)
+                });
+            }
+        }
+    }
+    for (list, option) in [(&a.min, "--min"), (&a.max, "--max")] {
+        for text in list {
+            let v = match numbers(text, option).ok().as_deref() {
+                Some(&[v]) => v,
+                _ => {
+                    return bad_input(format!(
+                        "{option}: \"{text}\" is not a number; a surface's bound holds on its \
+                         whole domain (no @A:B)"
+                    ))
+                }
+            };
+            c = c.with(if option == "--min" {
+                SurfaceShape::AtLeast(v)
+            } else {
+                SurfaceShape::AtMost(v)
+            });
         }
     }
     Ok(c)

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use lekalo::fit::{
+    constrained_surface_grid_least_squares, constrained_surface_scattered_least_squares,
     place_knots, surface_grid_least_squares_at, surface_grid_parameters,
     surface_scattered_least_squares_with_progress,
 };
@@ -12,6 +13,7 @@ use lekalo::{KnotVector, Points};
 use serde_json::{json, Value};
 
 use super::args::{bounding_box, clamped, with_ends, FitArgs};
+use super::shapes::surface_shape_constraints;
 use crate::context::Context;
 use crate::exit::bad_input;
 use crate::output::emit;
@@ -27,6 +29,13 @@ pub(super) fn run_surface(
     cx: &Context,
 ) -> Result<()> {
     let (p, q) = a.surface_degrees()?;
+    let shapes = surface_shape_constraints(a)?;
+    if !shapes.is_empty() && (a.smooth.is_some() || a.s.is_some()) {
+        return bad_input(
+            "a surface keeps --increasing, --decreasing, --min, --max in least squares on given \
+             knots or --ctrl-grid (with --penalty for scattered rows); drop --smooth or --s",
+        );
+    }
     let counts = match &a.ctrl_grid {
         Some(cg) => {
             let (ncu, ncv) = net_size(cg, "--ctrl-grid")?;
@@ -84,10 +93,17 @@ pub(super) fn run_surface(
         });
         let [gu, gv] = given;
         let (gu, gv) = (gu?, gv?);
+        // a table z(u, v) with shapes: its coordinates and values
+        let table = if shapes.is_empty() {
+            None
+        } else {
+            Some(table_of_grid(pts, (nu, nv), gu.clone(), gv.clone(), g)?)
+        };
         // the parameters not given: --param averaged over the grid lines (P&T §9.2.5)
-        let (uu, vv) = match (gu, gv) {
-            (Some(u), Some(v)) => (u, v),
-            (gu, gv) => {
+        let (uu, vv) = match (&table, gu, gv) {
+            (Some((u, v, _)), _, _) => (u.clone(), v.clone()),
+            (None, Some(u), Some(v)) => (u, v),
+            (None, gu, gv) => {
                 let (cu, cv) = surface_grid_parameters(pts.as_view(), (nu, nv), a.param())?;
                 (gu.unwrap_or(cu), gv.unwrap_or(cv))
             }
@@ -100,8 +116,23 @@ pub(super) fn run_surface(
         };
         let ku = dirs[0].knots(&uu, "u parameters of the grid's rows", &place)?;
         let kv = dirs[1].knots(&vv, "v parameters of the grid's columns", &place)?;
-        let s =
-            surface_grid_least_squares_at(pts.as_view(), (nu, nv), (p, q), (&uu, &vv), (&ku, &kv))?;
+        let s = match &table {
+            Some((_, _, z)) => constrained_surface_grid_least_squares(
+                z.as_view(),
+                (nu, nv),
+                (p, q),
+                (&uu, &vv),
+                (&ku, &kv),
+                &shapes,
+            )?,
+            None => surface_grid_least_squares_at(
+                pts.as_view(),
+                (nu, nv),
+                (p, q),
+                (&uu, &vv),
+                (&ku, &kv),
+            )?,
+        };
         return write_surface(&s, &a.out, inputs, cx);
     }
     if pts.dim() < 3 {
@@ -147,20 +178,43 @@ pub(super) fn run_surface(
     )?;
     // a bar on a terminal for many points or a large net; Ctrl-C stops the fit between blocks
     let large = pts.len() > super::args::LARGE || entries > super::args::LARGE * 100;
-    let f = crate::cancel::with_progress(cx, "scattered surface fit", large, |pr| {
-        surface_scattered_least_squares_with_progress(
+    let f = if shapes.is_empty() {
+        crate::cancel::with_progress(cx, "scattered surface fit", large, |pr| {
+            surface_scattered_least_squares_with_progress(
+                pts.as_view(),
+                weights,
+                (p, q),
+                (&ku, &kv),
+                a.penalty,
+                pr,
+            )
+        })?
+    } else {
+        if pts.dim() != 3 {
+            return bad_input(format!(
+                "--increasing, --decreasing, --min, --max: a surface z(u, v) keeps them; give \
+                 rows u, v, z (three columns, not {})",
+                pts.dim()
+            ));
+        }
+        constrained_surface_scattered_least_squares(
             pts.as_view(),
             weights,
             (p, q),
             (&ku, &kv),
             a.penalty,
-            pr,
-        )
-    })?;
+            &shapes,
+        )?
+    };
     let max = f.residuals.iter().fold(0.0_f64, |m, &r| m.max(r));
     let rms = (f.residuals.iter().map(|r| r * r).sum::<f64>() / f.residuals.len() as f64).sqrt();
     let mut report = json!({ "max_residual": max, "rms": rms, "weighted_rss": f.weighted_rss,
         "control_points": ncu * ncv, "penalty": a.penalty });
+    if !shapes.is_empty() {
+        report["constraints"] = json!((0..shapes.len())
+            .map(|i| shapes.describe(i))
+            .collect::<Vec<_>>());
+    }
     if a.per_point {
         report["residuals"] = json!(f.residuals);
     }
@@ -175,6 +229,63 @@ pub(super) fn run_surface(
         ));
     }
     write_surface(&f.surface, &a.out, inputs, cx)
+}
+
+/// The table `z(u, v)` a grid with shape constraints holds: one value per node at the
+/// coordinates `--params-u`, `--params-v` (equally spaced on [0, 1] when not given), or rows
+/// `u, v, z` whose `u` is the same along each grid row and `v` along each column.
+fn table_of_grid(
+    pts: &Points,
+    (nu, nv): (usize, usize),
+    gu: Option<Vec<f64>>,
+    gv: Option<Vec<f64>>,
+    grid: &str,
+) -> Result<(Vec<f64>, Vec<f64>, Points)> {
+    let even =
+        |n: usize| -> Vec<f64> { (0..n).map(|i| i as f64 / (n - 1).max(1) as f64).collect() };
+    if pts.len() != nu * nv {
+        return bad_input(format!(
+            "--grid {grid}: {} rows for {nu}x{nv} nodes; give one row per node",
+            pts.len()
+        ));
+    }
+    match pts.dim() {
+        1 => Ok((
+            gu.unwrap_or_else(|| even(nu)),
+            gv.unwrap_or_else(|| even(nv)),
+            pts.clone(),
+        )),
+        3 if gu.is_none() && gv.is_none() => {
+            let u: Vec<f64> = (0..nu).map(|i| pts.point(i * nv)[0]).collect();
+            let v: Vec<f64> = (0..nv).map(|j| pts.point(j)[1]).collect();
+            for (k, row) in pts.iter().enumerate() {
+                let (i, j) = (k / nv, k % nv);
+                if row[0] != u[i] || row[1] != v[j] {
+                    return bad_input(format!(
+                        "--grid {grid} with shape constraints: row {} is ({}, {}), off the table's \
+                         lines u = {}, v = {}; give rows u, v, z with u fixed along each grid \
+                         row and v along each column (u slowest), or one value per node with \
+                         --params-u and --params-v",
+                        k + 1,
+                        row[0],
+                        row[1],
+                        u[i],
+                        v[j]
+                    ));
+                }
+            }
+            let z: Vec<f64> = pts.iter().map(|r| r[2]).collect();
+            Ok((u, v, Points::from_flat(1, z)?))
+        }
+        3 => bad_input(
+            "--params-u/--params-v with rows u, v, z: the rows already give the coordinates; \
+             drop the options or give one value per node",
+        ),
+        d => bad_input(format!(
+            "--grid {grid} with shape constraints fits a table z(u, v): give rows u, v, z or one \
+             value per node, not {d} columns"
+        )),
+    }
 }
 
 /// How a direction without given knots places `count` of them over its data's parameters,

@@ -144,7 +144,7 @@ pub fn constrained_surface_grid_least_squares(
 /// use lekalo::{KnotVector, PointsRef};
 /// // 200 rows of a surface above 0 with noise that dips below it
 /// let data: Vec<f64> = (0..200).flat_map(|k| {
-///     let (u, v) = ((k as f64 * 0.618).fract(), (k as f64 * 0.382).fract());
+///     let (u, v) = ((k as f64 * 0.618_034).fract(), (k as f64 * 0.414_214).fract());
 ///     [u, v, u * v + 0.05 * (37.0 * k as f64).sin()]
 /// }).collect();
 /// let k = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0])?;
