@@ -10,6 +10,7 @@ mod cli_blend_corners;
 mod cli_faces;
 mod cli_fit;
 mod cli_fit_options;
+mod cli_fit_shape_surface;
 mod cli_fit_sphere;
 mod cli_fit_tensor;
 mod cli_gallery;

@@ -1,0 +1,188 @@
+//! End-to-end tests of `lekalo fit --grid NUxNV` and `--scattered` with shape constraints:
+//! `--increasing[=u|v]`, `--decreasing[=u|v]`, `--min V`, `--max V`.
+
+#![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
+
+use std::fmt::Write as _;
+
+use assert_cmd::Command;
+use lekalo::fit::{surface_shape_violations, SurfaceShape, SurfaceShapeConstraints};
+use lekalo::Direction;
+use predicates::str::contains;
+
+fn lekalo() -> Command {
+    Command::cargo_bin("lekalo").unwrap()
+}
+
+/// Rows `u v z` of a 16 × 12 table rising in u and v, with a ripple that makes a plain fit dip.
+fn table() -> String {
+    let mut s = String::new();
+    for i in 0..16 {
+        for j in 0..12 {
+            let (u, v) = (f64::from(i) / 15.0, f64::from(j) / 11.0);
+            let noise = 0.15 * (f64::from(7 * i + 3 * j) * 1.7).sin();
+            let z = u + 0.5 * v * v + 0.25 * (9.0 * u).sin() + noise;
+            writeln!(s, "{u} {v} {z}").unwrap();
+        }
+    }
+    s
+}
+
+fn surface_of(args: &[&str], stdin: &str) -> (lekalo::BSplineSurface, serde_json::Value) {
+    let out = lekalo()
+        .args(args)
+        .write_stdin(stdin)
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let v: serde_json::Value = serde_json::from_slice(&out).unwrap();
+    let object = if v["object"].is_null() {
+        v.clone()
+    } else {
+        v["object"].clone()
+    };
+    let s = lekalo_io::read_bspline_surface(&object.to_string(), "fit").unwrap();
+    (s, v)
+}
+
+#[test]
+fn a_table_on_a_grid_keeps_rising_in_both_directions() {
+    let both = SurfaceShapeConstraints::new()
+        .with(SurfaceShape::Increasing(Direction::U))
+        .with(SurfaceShape::Increasing(Direction::V));
+    let plain = [
+        "fit",
+        "-",
+        "--grid",
+        "16x12",
+        "--ctrl-grid",
+        "6x5",
+        "--degree",
+        "2",
+    ];
+    // rows u, v, z: the plain fit of the table (values only, at the same coordinates) dips
+    let values: String = table()
+        .lines()
+        .map(|l| format!("{}\n", l.split(' ').nth(2).unwrap()))
+        .collect();
+    let us: Vec<String> = (0..16).map(|i| (f64::from(i) / 15.0).to_string()).collect();
+    let vs: Vec<String> = (0..11 + 1)
+        .map(|j| (f64::from(j) / 11.0).to_string())
+        .collect();
+    let (pu, pv) = (us.join(","), vs.join(","));
+    let (free, _) = surface_of(
+        &[&plain[..], &["--params-u", &pu, "--params-v", &pv]].concat(),
+        &values,
+    );
+    assert!(surface_shape_violations(&free, &both).unwrap()[0] > 1e-3);
+    for flags in [
+        &["--increasing"][..],
+        &["--increasing=u", "--increasing=v"],
+        &["--increasing=u,v"],
+    ] {
+        let (s, _) = surface_of(&[&plain[..], flags].concat(), &table());
+        assert_eq!(surface_shape_violations(&s, &both).unwrap(), vec![0.0, 0.0]);
+        // values and coordinates given apart: the same surface
+        let (t, _) = surface_of(
+            &[&plain[..], flags, &["--params-u", &pu, "--params-v", &pv]].concat(),
+            &values,
+        );
+        assert_eq!(s, t);
+    }
+}
+
+#[test]
+fn scattered_rows_keep_bounds_and_a_direction() {
+    let mut rows = String::new();
+    for k in 0..300 {
+        let (u, v) = (
+            (f64::from(k) * 0.618_034).fract(),
+            (f64::from(k) * 0.414_214).fract(),
+        );
+        writeln!(
+            rows,
+            "{u} {v} {}",
+            u * (1.0 - v) + 0.2 * (31.0 * f64::from(k)).sin()
+        )
+        .unwrap();
+    }
+    let (s, v) = surface_of(
+        &[
+            "fit",
+            "-",
+            "--scattered",
+            "--ctrl-grid",
+            "5x5",
+            "--decreasing=v",
+            "--min",
+            "0",
+            "--max",
+            "0.8",
+            "--json",
+        ],
+        &rows,
+    );
+    assert_eq!(
+        v["report"]["constraints"],
+        serde_json::json!(["decreasing in v", "min 0", "max 0.8"])
+    );
+    let c = SurfaceShapeConstraints::new()
+        .with(SurfaceShape::Decreasing(Direction::V))
+        .with(SurfaceShape::AtLeast(0.0))
+        .with(SurfaceShape::AtMost(0.8));
+    assert_eq!(
+        surface_shape_violations(&s, &c).unwrap(),
+        vec![0.0, 0.0, 0.0]
+    );
+}
+
+#[test]
+fn surface_shapes_refuse_what_they_cannot_keep() {
+    let grid = [
+        "fit",
+        "-",
+        "--grid",
+        "16x12",
+        "--ctrl-grid",
+        "6x5",
+        "--degree",
+        "2",
+    ];
+    for (flags, message) in [
+        (
+            &["--min", "2", "--max", "1"][..],
+            "min 2, max 1 contradict each other",
+        ),
+        (&["--convex"], "--convex is a shape of curves"),
+        (&["--increasing=w"], "--increasing=u, --increasing=v"),
+        (&["--min", "0@0:1"], "whole domain"),
+    ] {
+        lekalo()
+            .args([&grid[..], flags].concat())
+            .write_stdin(table())
+            .assert()
+            .code(2)
+            .stderr(contains(message));
+    }
+    // points in space are not a table
+    let mut bent = String::new();
+    for i in 0..16 {
+        for j in 0..12 {
+            writeln!(
+                bent,
+                "{} {} 0",
+                f64::from(i) + 0.1 * f64::from(j),
+                f64::from(j)
+            )
+            .unwrap();
+        }
+    }
+    lekalo()
+        .args([&grid[..], &["--increasing"]].concat())
+        .write_stdin(bent)
+        .assert()
+        .code(2)
+        .stderr(contains("off the table's lines"));
+}
