@@ -1,0 +1,77 @@
+"""Shape-constrained surface fits from Python: the keyword arguments of fit_surface_grid and
+fit_surface_scattered reach the library and return the usual surface; bad arguments and
+contradictory bounds raise lekalo.InputError. (The mathematics is tested in the Rust core.)"""
+
+import numpy as np
+import pytest
+
+import lekalo
+
+U = np.linspace(0.0, 1.0, 16)
+V = np.linspace(0.0, 1.0, 12)
+I, J = np.meshgrid(np.arange(16), np.arange(12), indexing="ij")
+UU, VV = np.meshgrid(U, V, indexing="ij")
+Z = UU + 0.5 * VV**2 + 0.25 * np.sin(9 * UU) + 0.15 * np.sin(1.7 * (7 * I + 3 * J))
+TU = [0, 0, 0, 0.25, 0.5, 0.75, 1, 1, 1]
+TV = [0, 0, 0, 1 / 3, 2 / 3, 1, 1, 1]
+FINE = np.linspace(0.0, 1.0, 101)
+
+
+def dense(s):
+    fu, fv = np.meshgrid(FINE, FINE, indexing="ij")
+    return s(fu.ravel(), fv.ravel()).reshape(101, 101)
+
+
+def test_grid_increasing_in_both_directions():
+    grid = Z[:, :, None]
+    free = lekalo.fit_surface_grid(grid, degree=(2, 2), u=U, v=V, tu=TU, tv=TV)
+    assert (np.diff(dense(free), axis=0) < 0).any()
+    for increasing in (True, ("u", "v"), ["v", "u"]):
+        s = lekalo.fit_surface_grid(grid, degree=(2, 2), u=U, v=V, tu=TU, tv=TV, increasing=increasing)
+        assert isinstance(s, lekalo.BSplineSurface)
+        z = dense(s)
+        assert (np.diff(z, axis=0) >= -1e-12).all()
+        assert (np.diff(z, axis=1) >= -1e-12).all()
+
+
+def test_grid_one_direction_and_bounds():
+    grid = Z[:, :, None]
+    s = lekalo.fit_surface_grid(grid, degree=(2, 2), u=U, v=V, tu=TU, tv=TV, increasing="u", min=0.0, max=1.2)
+    z = dense(s)
+    assert (np.diff(z, axis=0) >= -1e-12).all()
+    assert z.min() >= -1e-12 and z.max() <= 1.2 + 1e-12
+    s = lekalo.fit_surface_grid(-grid, degree=(2, 2), u=U, v=V, tu=TU, tv=TV, decreasing="u")
+    assert (np.diff(dense(s), axis=0) <= 1e-12).all()
+
+
+def test_inactive_constraints_change_nothing():
+    grid = (UU + VV)[:, :, None]
+    free = lekalo.fit_surface_grid(grid, degree=(2, 2), u=U, v=V, tu=TU, tv=TV)
+    s = lekalo.fit_surface_grid(grid, degree=(2, 2), u=U, v=V, tu=TU, tv=TV, increasing=True, min=-1.0)
+    np.testing.assert_allclose(dense(s), dense(free), rtol=0, atol=1e-12)
+
+
+def test_scattered_bounds_and_monotone():
+    rng = np.random.default_rng(3)
+    u, v = rng.random(300), rng.random(300)
+    z = u * (1 - v) + 0.2 * np.sin(31 * np.arange(300))
+    data = np.column_stack([u, v, z])
+    t = [0, 0, 0, 0, 0.4, 0.7, 1, 1, 1, 1]
+    free, _, rss0 = lekalo.fit_surface_scattered(data, t, t)
+    s, res, rss = lekalo.fit_surface_scattered(data, t, t, decreasing="v", min=0.0, penalty=1e-3)
+    zz = dense(s)
+    assert zz.min() >= -1e-12
+    assert (np.diff(zz, axis=1) <= 1e-12).all()
+    assert res.shape == (300,) and rss >= rss0 - 1e-9
+
+
+def test_bad_arguments_and_contradictions():
+    grid = Z[:, :, None]
+    with pytest.raises(lekalo.InputError, match="min 2"):
+        lekalo.fit_surface_grid(grid, degree=(2, 2), u=U, v=V, tu=TU, tv=TV, min=2.0, max=1.0)
+    with pytest.raises(lekalo.InputError, match="increasing"):
+        lekalo.fit_surface_grid(grid, degree=(2, 2), u=U, v=V, tu=TU, tv=TV, increasing="w")
+    with pytest.raises(lekalo.InputError, match="u= and v="):
+        lekalo.fit_surface_grid(grid, (6, 5), degree=(2, 2), increasing=True)
+    with pytest.raises(lekalo.InputError, match="min"):
+        lekalo.fit_surface_grid(grid, degree=(2, 2), u=U, v=V, tu=TU, tv=TV, min="low")
