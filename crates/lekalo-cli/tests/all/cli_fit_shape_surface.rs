@@ -68,9 +68,7 @@ fn a_table_on_a_grid_keeps_rising_in_both_directions() {
         .map(|l| format!("{}\n", l.split(' ').nth(2).unwrap()))
         .collect();
     let us: Vec<String> = (0..16).map(|i| (f64::from(i) / 15.0).to_string()).collect();
-    let vs: Vec<String> = (0..11 + 1)
-        .map(|j| (f64::from(j) / 11.0).to_string())
-        .collect();
+    let vs: Vec<String> = (0..12).map(|j| (f64::from(j) / 11.0).to_string()).collect();
     let (pu, pv) = (us.join(","), vs.join(","));
     let (free, _) = surface_of(
         &[&plain[..], &["--params-u", &pu, "--params-v", &pv]].concat(),

@@ -382,9 +382,10 @@ fn program_rows(
             if m == 0.0 {
                 continue;
             }
-            // 2⁻⁴⁰ relative: the same row computed on two cells differs by rounding only
-            let quantum = |v: f64| (v / m * 1e12).round() as i64;
-            let key: (usize, Vec<i64>, i64) = (
+            // 10⁻¹² relative (`+ 0.0`: −0 and 0 alike): the same row computed on two cells
+            // differs by rounding only
+            let quantum = |v: f64| ((v / m * 1e12).round() + 0.0).to_bits();
+            let key: (usize, Vec<u64>, u64) = (
                 row.first,
                 row.coef.iter().map(|v| quantum(*v)).collect(),
                 quantum(row.constant),
