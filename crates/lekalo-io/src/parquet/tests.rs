@@ -1023,19 +1023,17 @@ fn a_table_of_points_round_trips_and_names_what_it_refuses() {
     assert_eq!(pts.as_slice(), &[1.0, 0.5, 2.0, 0.25, 3.0, 2.0]);
 
     // a null in the second row group names the file's row
-    let nulls = batch(vec![(
-        "x",
-        Arc::new(arrow_array::Int64Array::from(vec![Some(1), None])) as ArrayRef,
-    )]);
+    let nullable = |v: Vec<Option<i64>>| {
+        RecordBatch::try_from_iter_with_nullable(vec![(
+            "x",
+            Arc::new(arrow_array::Int64Array::from(v)) as ArrayRef,
+            true,
+        )])
+        .unwrap()
+    };
     write_batches(
         &path,
-        &[
-            batch(vec![(
-                "x",
-                Arc::new(arrow_array::Int64Array::from(vec![7])) as ArrayRef,
-            )]),
-            nulls,
-        ],
+        &[nullable(vec![Some(7)]), nullable(vec![Some(1), None])],
     );
     let e = read_parquet_points(&path, 10).unwrap_err().to_string();
     assert!(e.contains("field `x`") && e.contains("row 3: null"), "{e}");
