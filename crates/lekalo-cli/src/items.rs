@@ -12,13 +12,19 @@ use crate::context::Context;
 use crate::exit::bad_input;
 
 /// Reads a points file (CSV, whitespace text, JSON; `-` is standard input) with `--header`,
-/// or a NumPy `.npy` float64 array (by the extension).
+/// a NumPy `.npy` float64 array or a Parquet table of one row per point (by the extension;
+/// at most `--max-size` rows).
 pub(crate) fn read_points(cx: &Context, path: &Path) -> Result<(lekalo::Points, String)> {
     if path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("npy"))
     {
         return Ok(lekalo_io::read_npy_file(path)?);
+    }
+    // one table, without a key: one row per point (docs/formats.md#parquet-tables)
+    if is_parquet(path) {
+        let (points, _, name) = lekalo_io::read_parquet_points(path, cx.max_size)?;
+        return Ok((points, name));
     }
     // bytes, checked as UTF-8 by the parallel parse part by part (not whole before it)
     let (bytes, name) = lekalo_io::read_input_bytes(path)?;

@@ -88,8 +88,8 @@ pub use palette::{
 };
 #[cfg(feature = "parquet")]
 pub use parquet::{
-    read_curve_groups, read_point_groups, read_text_point_groups, GroupKey, ParquetBatchWriter,
-    PointGroup, TextPointGroups, DEFAULT_KEY,
+    read_curve_groups, read_parquet_points, read_point_groups, read_text_point_groups,
+    table_to_parquet, GroupKey, ParquetBatchWriter, PointGroup, TextPointGroups, DEFAULT_KEY,
 };
 pub use png::svg_to_png;
 pub use points_in::{

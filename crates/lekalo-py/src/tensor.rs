@@ -369,41 +369,28 @@ impl PyTensorBSpline {
         knots: Option<&Bound<'_, PyAny>>,
         end: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let lists = axes_arg(axes, "axes")?;
-        let n = lists.len();
-        let given = knots.map(|k| knots_arg(k, n)).transpose()?;
-        let degrees = degrees_or_cubic(degrees, n)?;
-        let ends = end.map(|e| ends_arg(e, n)).transpose()?;
-        let periodic: Vec<bool> = match &ends {
-            Some(e) => e.iter().map(|c| *c == EndCondition::Periodic).collect(),
-            None => vec![false; n],
-        };
-        let va = floats(values, "values")?;
-        let (pts, trailing) = grid_values_of(&va, &lists, &periodic)?;
-        let refs: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
-        let mut interpolation = TensorInterpolation::new(degrees);
-        if let Some(given) = given {
-            interpolation = interpolation.knot_vectors(given);
-        }
-        if let Some(ends) = ends {
-            interpolation = interpolation.end_conditions(ends);
-        }
-        let inner = py
-            .detach(|| interpolation.interpolate_at(&refs, pts))
-            .map_err(|e| match e {
-                lekalo::Error::Degree { .. } => named("degrees", &e),
-                lekalo::Error::InvalidArgument { .. } if e.arg() == Some(Arg::Knots) => {
-                    named("knots", &e)
-                }
-                lekalo::Error::SingularSystem { .. } => named("knots", &e),
-                lekalo::Error::KnotsNotSorted { .. }
-                | lekalo::Error::NotIncreasing { .. }
-                | lekalo::Error::Repeated { .. }
-                | lekalo::Error::InvalidArgument { .. }
-                | lekalo::Error::NonFinite { .. } => named("axes", &e),
-                other => lib_err(other),
-            })?;
+        let (inner, trailing) = interpolated(py, axes, values, degrees, knots, end)?;
         Ok(Self { inner, trailing })
+    }
+
+    /// The coefficients of [`interpolate_grid`](Self::interpolate_grid) with the same
+    /// arguments, shape `(n_1, …, n_N, *trailing)`, without the spline object: the solves'
+    /// array handed to NumPy as it is, not copied (all SciPy's `make_ndbspl` keeps; its peak
+    /// is then one array of the grid's size above the input).
+    #[staticmethod]
+    #[pyo3(signature = (axes, values, degrees = None, knots = None, end = None))]
+    fn interpolate_grid_c<'py>(
+        py: Python<'py>,
+        axes: &Bound<'_, PyAny>,
+        values: &Bound<'_, PyAny>,
+        degrees: Option<&Bound<'_, PyAny>>,
+        knots: Option<&Bound<'_, PyAny>>,
+        end: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let (inner, trailing) = interpolated(py, axes, values, degrees, knots, end)?;
+        let shape = [inner.shape(), &trailing].concat();
+        let (_, _, control) = inner.into_parts();
+        array(py, control.into_vec(), &shape)
     }
 
     /// The same spline from a `scipy.interpolate.NdBSpline` (its `t`, `c`, `k`, bit for bit).
@@ -447,6 +434,54 @@ impl PyTensorBSpline {
             self.trailing
         )
     }
+}
+
+/// The spline of `TensorBSpline.interpolate_grid(axes, values, degrees, knots, end)` and its
+/// values' trailing axes, computed without the GIL (`TensorInterpolation::interpolate_at`,
+/// `docs/theory/tensor.md#interpolation-on-grids`).
+fn interpolated(
+    py: Python<'_>,
+    axes: &Bound<'_, PyAny>,
+    values: &Bound<'_, PyAny>,
+    degrees: Option<&Bound<'_, PyAny>>,
+    knots: Option<&Bound<'_, PyAny>>,
+    end: Option<&Bound<'_, PyAny>>,
+) -> PyResult<(TensorBSpline, Vec<usize>)> {
+    let lists = axes_arg(axes, "axes")?;
+    let n = lists.len();
+    let given = knots.map(|k| knots_arg(k, n)).transpose()?;
+    let degrees = degrees_or_cubic(degrees, n)?;
+    let ends = end.map(|e| ends_arg(e, n)).transpose()?;
+    let periodic: Vec<bool> = match &ends {
+        Some(e) => e.iter().map(|c| *c == EndCondition::Periodic).collect(),
+        None => vec![false; n],
+    };
+    let va = floats(values, "values")?;
+    let (pts, trailing) = grid_values_of(&va, &lists, &periodic)?;
+    let refs: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
+    let mut interpolation = TensorInterpolation::new(degrees);
+    if let Some(given) = given {
+        interpolation = interpolation.knot_vectors(given);
+    }
+    if let Some(ends) = ends {
+        interpolation = interpolation.end_conditions(ends);
+    }
+    let inner = py
+        .detach(|| interpolation.interpolate_at(&refs, pts))
+        .map_err(|e| match e {
+            lekalo::Error::Degree { .. } => named("degrees", &e),
+            lekalo::Error::InvalidArgument { .. } if e.arg() == Some(Arg::Knots) => {
+                named("knots", &e)
+            }
+            lekalo::Error::SingularSystem { .. } => named("knots", &e),
+            lekalo::Error::KnotsNotSorted { .. }
+            | lekalo::Error::NotIncreasing { .. }
+            | lekalo::Error::Repeated { .. }
+            | lekalo::Error::InvalidArgument { .. }
+            | lekalo::Error::NonFinite { .. } => named("axes", &e),
+            other => lib_err(other),
+        })?;
+    Ok((inner, trailing))
 }
 
 /// The spline of `TensorBSpline(t, c, k)`, validated as the class validates it, and the

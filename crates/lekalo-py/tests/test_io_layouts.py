@@ -142,3 +142,96 @@ def test_the_npz_snippet_of_formats_md_runs_as_written(tmp_path, monkeypatch):
     exec(compile(code, "docs/formats.md, python block 1", "exec"), {})
     back = io.load_npz_curve("mine.npz")
     assert back["degree"] == 3 and len(back["control_points"]) == 5
+
+
+def test_the_parquet_table_snippet_of_formats_md_runs_as_written(tmp_path, monkeypatch):
+    # the python block of "Parquet tables": pandas writes a grid's values, the command line
+    # interpolates them and evaluates the spline on a finer grid into a table pandas reads
+    exe = _binary()
+    doc = Path(__file__).resolve().parents[3] / "docs" / "formats.md"
+    text = doc.read_text().split("### Parquet tables", 1)[1]
+    code = text.split("```python\n", 1)[1].split("```", 1)[0]
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("PATH", os.path.dirname(exe) + os.pathsep + os.environ["PATH"])
+    scope = {}
+    exec(compile(code, "docs/formats.md, Parquet tables", "exec"), scope)
+    field, values = scope["field"], scope["values"]
+    assert list(field.columns) == ["x1", "x2", "x3", "y"]
+    assert len(field) == 11 * 9 * 7
+    # the first direction slowest; the interpolant passes through the values at the nodes
+    # (i/5, j/4, k/3), which the finer grid (i/10, j/8, k/6) holds
+    y = field["y"].to_numpy().reshape(11, 9, 7)
+    np.testing.assert_allclose(y[::2, ::2, ::2], values, rtol=0, atol=1e-12)
+    x1 = field["x1"].to_numpy().reshape(11, 9, 7)
+    assert np.array_equal(x1[:, 0, 0], np.linspace(0, 1, 11))
+
+
+def test_parquet_tables_written_by_pandas(tmp_path):
+    # integer, float32 and float64 columns; evaluation points and scattered rows; the errors
+    # of a null and a non-finite number name the row and the column
+    exe = _binary()
+    rng = np.random.default_rng(5)
+    values = rng.random((5, 4, 3))
+    grid = tmp_path / "grid.parquet"
+    pd.DataFrame({"f": values.ravel()}).to_parquet(grid)
+    npy = tmp_path / "grid.npy"
+    np.save(npy, values)
+    a, b = tmp_path / "a.json", tmp_path / "b.json"
+    subprocess.run([exe, "interpolate", str(grid), "--grid", "5x4x3", "-o", str(a)], check=True)
+    subprocess.run([exe, "interpolate", str(npy), "--grid", "5x4x3", "-o", str(b)], check=True)
+    assert a.read_text() == b.read_text()
+    at = pd.DataFrame(
+        {
+            "i": np.array([0, 1, 1], dtype=np.int32),
+            "h": np.array([0.5, 0.25, 1], dtype=np.float32),
+            "d": [0.125, 0.75, 0.5],
+        }
+    )
+    at.to_parquet(tmp_path / "at.parquet")
+    got = subprocess.run(
+        [exe, "eval", str(a), "--at-file", str(tmp_path / "at.parquet"), "--json"],
+        check=True,
+        capture_output=True,
+        text=True,
+    ).stdout
+    want = subprocess.run(
+        [exe, "eval", str(a), "--at", "0,0.5,0.125,1,0.25,0.75,1,1,0.5", "--json"],
+        check=True,
+        capture_output=True,
+        text=True,
+    ).stdout
+    assert got == want
+    # scattered rows x1, x2, x3, y from a table
+    pts = rng.random((400, 3))
+    rows = pd.DataFrame(pts, columns=["x", "y", "z"]).assign(v=pts.sum(axis=1))
+    rows.to_parquet(tmp_path / "rows.parquet")
+    fitted = tmp_path / "fitted.json"
+    subprocess.run(
+        [exe, "fit", str(tmp_path / "rows.parquet"), "--scattered", "--degree", "1",
+         "--ctrl-grid", "2x2x2", "--bbox", "0:1,0:1,0:1", "-o", str(fitted)],
+        check=True,
+    )
+    out = subprocess.run(
+        [exe, "eval", str(fitted), "--at", "0.3,0.4,0.5", "--json"],
+        check=True, capture_output=True, text=True,
+    ).stdout
+    import json
+
+    assert abs(json.loads(out)["rows"][0][3] - 1.2) < 1e-12
+    # a null and a non-finite number
+    bad = pd.DataFrame({"x": [0.5, None, 0.5], "y": [0.5, 0.5, 0.5], "z": [0.1, 0.2, 0.3]})
+    bad.to_parquet(tmp_path / "null.parquet")
+    r = subprocess.run(
+        [exe, "eval", str(a), "--at-file", str(tmp_path / "null.parquet")],
+        capture_output=True, text=True,
+    )
+    assert r.returncode == 2
+    assert "field `x`" in r.stderr and "row 2" in r.stderr, r.stderr
+    nulls = pd.DataFrame({"x": pd.array([1, None, 0], dtype="Int64"), "y": [0.5] * 3, "z": [0.5] * 3})
+    nulls.to_parquet(tmp_path / "int-null.parquet")
+    r = subprocess.run(
+        [exe, "eval", str(a), "--at-file", str(tmp_path / "int-null.parquet")],
+        capture_output=True, text=True,
+    )
+    assert r.returncode == 2
+    assert "row 2: null" in r.stderr, r.stderr

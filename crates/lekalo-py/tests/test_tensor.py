@@ -313,3 +313,40 @@ def test_evaluation_and_construction_release_the_gil():
         # one call, long enough to have a middle the other thread can reach
         if must or took > 0.05:
             assert ticked, f"{name} held the GIL for {took:.3f} s"
+
+
+_PEAK_CHILD = r"""
+import json, sys
+import numpy as np
+import lekalo.scipy as ls
+
+def status(field):
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith(field + ":"):
+                return int(line.split()[1]) * 1024
+
+n = int(sys.argv[1])
+axes = [np.linspace(0, 1, n)] * 3
+values = np.random.default_rng(1).random((n, n, n))
+ls.make_ndbspl(axes, values, k=3)  # the library's pages mapped, its pools made
+with open("/proc/self/clear_refs", "w") as f:
+    f.write("5")
+before = status("VmRSS")
+spline = ls.make_ndbspl(axes, values, k=3)
+print(json.dumps({"extra": status("VmHWM") - before, "input": values.nbytes}))
+"""
+
+
+@pytest.mark.skipif(not __import__("os").path.exists("/proc/self/clear_refs"), reason="Linux's peak reset")
+def test_make_ndbspl_peak_memory_is_one_grid_above_the_input(tmp_path):
+    # the values are copied once into the array the solves work on, which becomes the
+    # coefficients, handed to NumPy without a copy: the peak above the input is one grid (the
+    # coefficients), not two (a spline object's and NumPy's copies)
+    import json
+    import subprocess
+    import sys
+
+    out = subprocess.run([sys.executable, "-c", _PEAK_CHILD, "96"], capture_output=True, text=True, check=True)
+    m = json.loads(out.stdout)
+    assert m["extra"] < 1.5 * m["input"], m

@@ -84,6 +84,11 @@ impl RowGroups {
         self.meta.metadata().num_row_groups()
     }
 
+    /// The rows of row group `i`, from the metadata.
+    pub(super) fn row_count(&self, i: usize) -> usize {
+        usize::try_from(self.meta.metadata().row_group(i).num_rows()).unwrap_or(usize::MAX)
+    }
+
     pub(super) fn schema(&self) -> &arrow_schema::Schema {
         self.meta.schema()
     }

@@ -22,16 +22,20 @@
 //! Files: `columns.rs` reads a file's row groups and its numeric and key columns whatever their
 //! Arrow types; `read_points.rs` gathers point sets; `read_curves.rs` reads curves back;
 //! `write.rs` holds the writer of curves, points and samples; `text_groups.rs` reads point
-//! sets in the long layout from a text table (CSV with a key column), to be written as a batch.
+//! sets in the long layout from a text table (CSV with a key column), to be written as a batch;
+//! `table.rs` reads and writes one table without a key (one point set: a grid's values, the
+//! points where a spline is evaluated, its samples).
 
 mod columns;
 mod read_curves;
 mod read_points;
+mod table;
 mod text_groups;
 mod write;
 
 pub use read_curves::read_curve_groups;
 pub use read_points::read_point_groups;
+pub use table::{read_parquet_points, table_to_parquet};
 pub use text_groups::{read_text_point_groups, TextPointGroups};
 pub use write::ParquetBatchWriter;
 

@@ -973,3 +973,80 @@ fn point_samples_refuse_another_layout() {
         "{e}"
     );
 }
+
+/// A table without a key: written and read back bit for bit (negative zero, subnormals, the
+/// largest double), row groups joined in order, integer and float columns read as doubles;
+/// a null, a text column and too many rows refused by name.
+#[test]
+fn a_table_of_points_round_trips_and_names_what_it_refuses() {
+    let (_d, path) = tmp("t.parquet");
+    let flat = [0.0, -0.0, 5e-324, f64::MAX, -1.5, 0.1 + 0.2];
+    let names = ["a".to_string(), "b".to_string(), "c".to_string()];
+    std::fs::write(&path, table_to_parquet(&names, &flat).unwrap()).unwrap();
+    let (pts, cols, _) = read_parquet_points(&path, 2).unwrap();
+    assert_eq!(cols, names);
+    assert_eq!(pts.dim(), 3);
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(pts.as_slice()), bits(&flat));
+    assert!(matches!(
+        read_parquet_points(&path, 1),
+        Err(IoError::OverLimit {
+            raise_to: Some(2),
+            ..
+        })
+    ));
+    assert!(matches!(
+        table_to_parquet(&names, &flat[..5]),
+        Err(IoError::Render(_))
+    ));
+
+    // two row groups, an integer and a float column
+    let first = batch(vec![
+        (
+            "i",
+            Arc::new(arrow_array::Int32Array::from(vec![1, 2])) as ArrayRef,
+        ),
+        (
+            "f",
+            Arc::new(arrow_array::Float32Array::from(vec![0.5f32, 0.25])),
+        ),
+    ]);
+    let second = batch(vec![
+        (
+            "i",
+            Arc::new(arrow_array::Int32Array::from(vec![3])) as ArrayRef,
+        ),
+        ("f", Arc::new(arrow_array::Float32Array::from(vec![2.0f32]))),
+    ]);
+    write_batches(&path, &[first, second]);
+    let (pts, _, _) = read_parquet_points(&path, 10).unwrap();
+    assert_eq!(pts.as_slice(), &[1.0, 0.5, 2.0, 0.25, 3.0, 2.0]);
+
+    // a null in the second row group names the file's row
+    let nullable = |v: Vec<Option<i64>>| {
+        RecordBatch::try_from_iter_with_nullable(vec![(
+            "x",
+            Arc::new(arrow_array::Int64Array::from(v)) as ArrayRef,
+            true,
+        )])
+        .unwrap()
+    };
+    write_batches(
+        &path,
+        &[nullable(vec![Some(7)]), nullable(vec![Some(1), None])],
+    );
+    let e = read_parquet_points(&path, 10).unwrap_err().to_string();
+    assert!(e.contains("field `x`") && e.contains("row 3: null"), "{e}");
+
+    // text is not a coordinate
+    let text = batch(vec![(
+        "name",
+        Arc::new(arrow_array::StringArray::from(vec!["a"])) as ArrayRef,
+    )]);
+    write_batches(&path, &[text]);
+    let e = read_parquet_points(&path, 10).unwrap_err().to_string();
+    assert!(
+        e.contains("field `name`") && e.contains("not numbers"),
+        "{e}"
+    );
+}

@@ -123,4 +123,20 @@ impl Tensor {
             Tensor::Nurbs(s) => s.par_eval_batch(xs, out),
         }
     }
+
+    /// The spline on the grid `axes[0] × ⋯ × axes[N−1]` into `out` (`dim` numbers a point, the
+    /// first direction slowest), without forming the grid's points:
+    /// [`TensorBSpline::eval_grid`] or [`TensorNurbs::eval_grid`]
+    /// (`docs/theory/tensor.md#evaluation-on-grids`). Each value is the same bits as the
+    /// evaluation at its point.
+    ///
+    /// # Errors
+    /// As those methods ([`crate::Error::LengthMismatch`], [`crate::Error::TooLarge`],
+    /// [`crate::Error::ParameterOutOfDomain`]).
+    pub fn eval_grid(&self, axes: &[&[f64]], out: &mut [f64]) -> Result<()> {
+        match self {
+            Tensor::BSpline(s) => s.eval_grid(axes, None, out),
+            Tensor::Nurbs(s) => s.eval_grid(axes, out),
+        }
+    }
 }

@@ -220,14 +220,10 @@ fn interpolate(a: &InterpolateArgs, cx: &Context) -> Result<()> {
              --params-in K=LIST, one list per direction",
         );
     }
-    if crate::items::is_parquet(&a.points) {
-        if a.grid.is_some()
-            || a.function
-            || a.hermite.is_some()
-            || a.tangents.is_some()
-            || a.params.is_some()
-        {
-            return bad_input("a Parquet batch is interpolated by B-spline curves: --grid, --function, --hermite, --tangents and --params are for one points file");
+    // a Parquet file with --grid is one table, the grid's values (read below as points)
+    if crate::items::is_parquet(&a.points) && a.grid.is_none() {
+        if a.function || a.hermite.is_some() || a.tangents.is_some() || a.params.is_some() {
+            return bad_input("a Parquet batch is interpolated by B-spline curves: --function, --hermite, --tangents and --params are for one points file (with --grid, a Parquet file is a grid's values)");
         }
         let interp = curve_interpolation(a, param)?;
         // the work on one group of points

@@ -462,12 +462,16 @@ pub(crate) struct TensorEval<'a> {
     pub(crate) at: Option<&'a str>,
     /// `--at-file FILE`: N columns.
     pub(crate) at_file: Option<&'a Path>,
+    /// `--grid AxBxC…`: evenly spaced parameters over each direction's domain, every point
+    /// of their outer product (after the points of `--at` and `--at-file`).
+    pub(crate) grid: Option<&'a str>,
     pub(crate) format: Option<&'a str>,
     pub(crate) output: Option<&'a Path>,
 }
 
-/// Evaluates at the points of `--at` and `--at-file`: columns `x1 … xN`, then the value
-/// (`y`, or `y1 … yd`).
+/// Evaluates at the points of `--at` and `--at-file`, then on `--grid` (by the library's
+/// evaluation on grids, which never forms the grid's points): columns `x1 … xN`, then the value
+/// (`y`, or `y1 … yd`); written as CSV, JSON, `.npy` or a Parquet table.
 pub(crate) fn eval(e: &TensorEval<'_>, t: &Tensor, cx: &Context) -> Result<()> {
     let n = t.n_vars();
     let mut xs = Vec::new();
@@ -491,18 +495,36 @@ pub(crate) fn eval(e: &TensorEval<'_>, t: &Tensor, cx: &Context) -> Result<()> {
         }
         xs.extend_from_slice(pts.as_slice());
     }
-    if xs.is_empty() {
+    let axes = match e.grid {
+        Some(g) => grid_axes(t, g, cx)?,
+        None => Vec::new(),
+    };
+    if xs.is_empty() && axes.is_empty() {
         return bad_input(format!(
-            "{}: a spline in {n} parameters is evaluated at --at x1,…,x{n} or at the rows of --at-file FILE",
-            e.input.display()
+            "{}: a spline in {n} parameters is evaluated at --at x1,…,x{n}, at the rows of --at-file FILE or on --grid {}",
+            e.input.display(),
+            vec!["5"; n].join("x")
         ));
     }
     let dim = t.dim();
-    let m = xs.len() / n;
-    crate::context::check_memory::<f64>(m.saturating_mul(dim), "--at")?;
+    let on_grid: usize = if axes.is_empty() {
+        0
+    } else {
+        axes.iter().map(Vec::len).product()
+    };
+    let m = xs.len() / n + on_grid;
+    let option = if on_grid > 0 { "--grid" } else { "--at" };
+    crate::context::check_memory::<f64>(m.saturating_mul(n + dim), option)?;
     let mut out = vec![0.0; m * dim];
-    t.eval_batch(&xs, &mut out)
-        .map_err(|err| BadInput(format!("{}: {err}", e.input.display())))?;
+    let (at_points, at_grid) = out.split_at_mut(xs.len() / n * dim);
+    let failed = |err: lekalo::Error| BadInput(format!("{}: {err}", e.input.display()));
+    t.eval_batch(&xs, at_points).map_err(failed)?;
+    if on_grid > 0 {
+        let lists: Vec<&[f64]> = axes.iter().map(Vec::as_slice).collect();
+        t.eval_grid(&lists, at_grid).map_err(failed)?;
+        xs.reserve_exact(on_grid * n);
+        grid_points(&axes, &mut xs);
+    }
     let mut columns: Vec<String> = (1..=n).map(|a| format!("x{a}")).collect();
     if dim == 1 {
         columns.push("y".into());
@@ -534,10 +556,57 @@ pub(crate) fn eval(e: &TensorEval<'_>, t: &Tensor, cx: &Context) -> Result<()> {
             let flat: Vec<f64> = rows.flat_map(|(x, y)| x.iter().chain(y).copied()).collect();
             lekalo_io::npy_bytes(m, n + dim, &flat)?
         }
-        other => return bad_input(format!("--format {other}: use csv, json or npy")),
+        "parquet" | "pq" => {
+            let flat: Vec<f64> = rows.flat_map(|(x, y)| x.iter().chain(y).copied()).collect();
+            lekalo_io::table_to_parquet(&columns, &flat)?
+        }
+        other => return bad_input(format!("--format {other}: use csv, json, npy or parquet")),
     };
     let inputs: Vec<PathBuf> = vec![e.input.to_path_buf()];
     emit(e.output, &bytes, &inputs, cx)
+}
+
+/// The parameters of `--grid AxBxC…`: one evenly spaced list a direction over its domain
+/// (ends exact, [`lekalo::uniform_parameters`]), at most `--max-size` points in all.
+fn grid_axes(t: &Tensor, grid: &str, cx: &Context) -> Result<Vec<Vec<f64>>> {
+    let n = t.n_vars();
+    let factors = grid_factors(grid)?;
+    if factors.len() != n {
+        return bad_input(format!(
+            "--grid {grid}: {} sizes for a spline in {n} parameters; give one size a direction, e.g. --grid {}",
+            factors.len(),
+            vec!["5"; n].join("x")
+        ));
+    }
+    let points = factors.iter().fold(1usize, |a, &m| a.saturating_mul(m));
+    if points > cx.max_size {
+        return bad_input(format!(
+            "--grid {grid}: {points} points, above the size limit {}; raise the limit with --max-size {points} if the machine has the memory",
+            cx.max_size
+        ));
+    }
+    Ok(t.domain()
+        .into_iter()
+        .zip(&factors)
+        .map(|((a, b), &m)| lekalo::uniform_parameters(a, b, m))
+        .collect())
+}
+
+/// Appends the points of the grid `axes[0] × ⋯ × axes[N−1]` to `xs`, the first direction
+/// slowest (the order of the library's evaluation on grids).
+fn grid_points(axes: &[Vec<f64>], xs: &mut Vec<f64>) {
+    let total: usize = axes.iter().map(Vec::len).product();
+    let mut index = vec![0usize; axes.len()];
+    for _ in 0..total {
+        xs.extend(index.iter().zip(axes).map(|(&i, list)| list[i]));
+        for a in (0..axes.len()).rev() {
+            index[a] += 1;
+            if index[a] < axes[a].len() {
+                break;
+            }
+            index[a] = 0;
+        }
+    }
 }
 
 /// The facts `info` reports of a tensor spline.

@@ -42,15 +42,10 @@ fn fit(a: &FitArgs, cx: &Context) -> Result<()> {
     if a.sphere {
         return super::sphere::run(a, cx);
     }
-    if crate::items::is_parquet(&a.points) {
-        if a.grid.is_some()
-            || a.scattered
-            || a.periodic
-            || a.weights.is_some()
-            || a.json
-            || a.per_point
-        {
-            return bad_input("a Parquet batch is fitted by open curves, one per group: --grid, --scattered, --periodic, --weights, --json and --per-point are for one points file");
+    // a Parquet file with --grid or --scattered is one table (read below as points)
+    if crate::items::is_parquet(&a.points) && a.grid.is_none() && !a.scattered {
+        if a.periodic || a.weights.is_some() || a.json || a.per_point {
+            return bad_input("a Parquet batch is fitted by open curves, one per group: --periodic, --weights, --json and --per-point are for one points file (with --grid or --scattered, a Parquet file is one table of data)");
         }
         // the work on one group of points
         let quiet = cx.quiet();

@@ -34,6 +34,7 @@ Examples:
   lekalo eval surface.json --uv 0.3,0.7 --derivatives 2 --normals --curvature
   lekalo eval surface.json --grid 5x7 -o grid.csv
   lekalo eval tensor.json --at 0.5,0.25,1 --at-file points.csv
+  lekalo eval tensor.json --grid 20x20x10 -o field.parquet
 
 Surfaces: evaluated at --uv U,V pairs (repeat the option, or list several pairs), at the rows
 of --uv-file, or on an evenly spaced --grid NUxNV (--samples N: N × N; default 5 × 5). Columns:
@@ -43,7 +44,9 @@ the principal curvatures k1 ≥ k2, gaussian and mean (sign: positive where the 
 towards the normal (S_u × S_v)/|S_u × S_v|).
 
 Splines in N ≥ 3 parameters (bspline_tensor, nurbs_tensor): evaluated at --at x1,…,xN (several
-points in a row) and the rows of --at-file (N columns). Columns: x1 … xN, then y (y1 … yd).")]
+points in a row), the rows of --at-file (N columns: CSV, .npy or a Parquet table) and on an
+evenly spaced --grid AxBxC… (the first direction slowest). Columns: x1 … xN, then y (y1 … yd);
+written as CSV, JSON, .npy or Parquet (by --format or the output's extension).")]
 pub(crate) struct EvalArgs {
     /// Object file (JSON; JSON Lines for batches; `-` for standard input).
     input: PathBuf,
@@ -64,7 +67,8 @@ pub(crate) struct EvalArgs {
     #[arg(long)]
     torsion: bool,
     /// Output format: csv, json or npy (a NumPy float64 array, one row per sample, the CSV's
-    /// columns) (default: from the output's extension, else csv).
+    /// columns); for splines in N parameters also parquet (one column per CSV column) (default:
+    /// from the output's extension, else csv).
     #[arg(long)]
     format: Option<String>,
     /// The same as `--format json`: `{"columns", "rows"}` with full-precision numbers.
@@ -82,11 +86,12 @@ pub(crate) struct EvalArgs {
     /// Surfaces: a file of (u, v) rows, two columns.
     #[arg(long, value_name = "FILE")]
     uv_file: Option<PathBuf>,
-    /// Surfaces: an evenly spaced `NUxNV` parameter grid over the domain (e.g. `5x7`).
+    /// Surfaces: an evenly spaced `NUxNV` parameter grid over the domain (e.g. `5x7`); splines
+    /// in N parameters: `AxBxC…`, one size a direction.
     #[arg(long, value_name = "NUxNV", conflicts_with_all = ["uv", "uv_file"])]
     grid: Option<String>,
     /// Splines in N ≥ 3 parameters: a file of points, N columns (with or instead of --at
-    /// x1,…,xN).
+    /// x1,…,xN): CSV, whitespace text, JSON, `.npy` or a Parquet table (one row a point).
     #[arg(long, value_name = "FILE")]
     at_file: Option<PathBuf>,
     /// Surfaces: output the unit normal nx, ny, nz.
@@ -191,17 +196,17 @@ pub(crate) fn run(a: &EvalArgs, cx: &Context) -> Result<()> {
                 || a.curvature
                 || a.torsion
                 || a.normals
-                || a.grid.is_some()
                 || !a.uv.is_empty()
                 || a.uv_file.is_some() =>
         {
-            bad_input("a spline in N parameters is evaluated at --at x1,…,xN or --at-file FILE; --samples, --derivatives, --curvature, --torsion, --normals, --grid, --uv and --uv-file are for curves and surfaces (partial derivatives: the Python TensorBSpline's nu=)")
+            bad_input("a spline in N parameters is evaluated at --at x1,…,xN, --at-file FILE or on --grid AxBxC…; --samples, --derivatives, --curvature, --torsion, --normals, --uv and --uv-file are for curves and surfaces (partial derivatives: the Python TensorBSpline's nu=)")
         }
         Items::Other(lekalo_io::Shape::Tensor(t)) => crate::cmd::tensor::eval(
             &crate::cmd::tensor::TensorEval {
                 input: &a.input,
                 at: a.at.as_deref(),
                 at_file: a.at_file.as_deref(),
+                grid: a.grid.as_deref(),
                 format: if a.json { Some("json") } else { a.format.as_deref() },
                 output: a.output.as_deref(),
             },

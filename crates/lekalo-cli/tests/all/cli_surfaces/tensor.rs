@@ -417,3 +417,177 @@ fn interpolate_and_make_write_npz_when_the_output_asks_for_it() {
         .stderr(contains("written as json or npz, not \"csv\""));
     assert!(!d.path().join("t.csv").exists());
 }
+
+/// The CSV that `eval` writes for `args`.
+fn eval_csv(t: &Path, args: &[&str]) -> String {
+    let out = lekalo()
+        .arg("eval")
+        .arg(t)
+        .args(args)
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    String::from_utf8(out).unwrap()
+}
+
+/// A grid's values as a Parquet table (one row a node, the first direction slowest) give the
+/// spline of the same values as text, byte for byte; `eval --grid` gives, row for row, the
+/// values of `eval --at-file` at the grid's points, as CSV or a Parquet table that reads back
+/// to the same numbers.
+#[test]
+fn parquet_tables_in_and_out_and_eval_on_a_grid() {
+    let d = tempfile::tempdir().unwrap();
+    let t = interpolated(d.path());
+    let expected = fs::read_to_string(&t).unwrap();
+    let data: Vec<f64> = values([5, 4, 3])
+        .lines()
+        .map(|l| l.parse().unwrap())
+        .collect();
+    let pq = d.path().join("values.parquet");
+    fs::write(
+        &pq,
+        lekalo_io::table_to_parquet(&["f".into()], &data).unwrap(),
+    )
+    .unwrap();
+    let out = lekalo()
+        .arg("interpolate")
+        .arg(&pq)
+        .args(["--grid", "5x4x3", "--degree", "3,3,2", "--param", "uniform"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    assert_eq!(String::from_utf8(out).unwrap(), expected);
+
+    // the grid 3 × 2 × 4 of [0, 1]³, first direction slowest, as a points file
+    let axis = |m: u32| -> Vec<f64> { (0..m).map(|k| f64::from(k) / f64::from(m - 1)).collect() };
+    let mut points = String::new();
+    for x in axis(3) {
+        for y in axis(2) {
+            for z in axis(4) {
+                points.push_str(&format!("{x:?},{y:?},{z:?}\n"));
+            }
+        }
+    }
+    let at = d.path().join("at.csv");
+    fs::write(&at, &points).unwrap();
+    let on_grid = eval_csv(&t, &["--grid", "3x2x4"]);
+    assert_eq!(on_grid, eval_csv(&t, &["--at-file", at.to_str().unwrap()]));
+    assert_eq!(on_grid.lines().count(), 1 + 24);
+    // --at first, then the grid
+    let both = eval_csv(&t, &["--at", "0.5,0.5,0.5", "--grid", "3x2x4"]);
+    let first = eval_csv(&t, &["--at", "0.5,0.5,0.5"]);
+    assert_eq!(
+        both,
+        format!("{}{}", first, on_grid.split_once('\n').unwrap().1)
+    );
+
+    // the same points as a Parquet table in, the samples as a Parquet table out
+    let flat: Vec<f64> = points
+        .lines()
+        .flat_map(|l| l.split(',').map(|v| v.parse::<f64>().unwrap()))
+        .collect();
+    let at_pq = d.path().join("at.parquet");
+    let names = ["u".to_string(), "v".to_string(), "w".to_string()];
+    fs::write(&at_pq, lekalo_io::table_to_parquet(&names, &flat).unwrap()).unwrap();
+    assert_eq!(
+        eval_csv(&t, &["--at-file", at_pq.to_str().unwrap()]),
+        on_grid
+    );
+    let samples = d.path().join("samples.parquet");
+    lekalo()
+        .arg("eval")
+        .arg(&t)
+        .args(["--grid", "3x2x4", "-o"])
+        .arg(&samples)
+        .assert()
+        .success();
+    // read back: columns x1, x2, x3, y, the numbers of the CSV
+    let (back, columns, _) = lekalo_io::read_parquet_points(&samples, 1000).unwrap();
+    assert_eq!(columns, ["x1", "x2", "x3", "y"]);
+    let csv: Vec<f64> = on_grid
+        .lines()
+        .skip(1)
+        .flat_map(|l| {
+            l.split(',')
+                .map(|v| v.parse::<f64>().unwrap())
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    assert_eq!(back.as_slice(), csv.as_slice());
+}
+
+/// Parquet tables and `--grid` that cannot be used exit 2 naming the file, the column, the row
+/// or the option.
+#[test]
+fn bad_parquet_tables_and_grids_exit_2() {
+    let d = tempfile::tempdir().unwrap();
+    let t = interpolated(d.path());
+    let eval = |args: &[&str], needle: &str| {
+        lekalo()
+            .arg("eval")
+            .arg(&t)
+            .args(args)
+            .assert()
+            .code(2)
+            .stderr(contains(needle));
+    };
+    eval(
+        &["--grid", "3x3"],
+        "--grid 3x3: 2 sizes for a spline in 3 parameters",
+    );
+    eval(&["--grid", "3x0x3"], "--grid");
+    eval(
+        &["--grid", "1000x1000x1000"],
+        "--grid 1000x1000x1000: 1000000000 points, above the size limit",
+    );
+    eval(
+        &["--grid", "2x2x2", "--format", "xlsx"],
+        "use csv, json, npy or parquet",
+    );
+    // two columns for three parameters
+    let two = d.path().join("two.parquet");
+    let names = ["a".to_string(), "b".to_string()];
+    fs::write(
+        &two,
+        lekalo_io::table_to_parquet(&names, &[0.5; 6]).unwrap(),
+    )
+    .unwrap();
+    eval(
+        &["--at-file", two.to_str().unwrap()],
+        "--at-file needs 3 columns, one per parameter; found 2",
+    );
+    // more rows than --max-size
+    lekalo()
+        .args(["--max-size", "2", "eval"])
+        .arg(&t)
+        .arg("--at-file")
+        .arg(&two)
+        .assert()
+        .code(2)
+        .stderr(contains("3 rows, above the limit of 2 points"))
+        .stderr(contains("--max-size 3"));
+    // a string column (a batch's key) is not a coordinate
+    let keyed = d.path().join("keyed.parquet");
+    let mut w = lekalo_io::ParquetBatchWriter::new(fs::File::create(&keyed).unwrap());
+    let pts = lekalo::Points::from_flat(3, vec![0.5; 6]).unwrap();
+    w.write_points(
+        "name",
+        &["x", "y", "z"],
+        &[(lekalo_io::GroupKey::Str("a".into()), pts)],
+    )
+    .unwrap();
+    w.close(|_| Ok(())).unwrap();
+    eval(&["--at-file", keyed.to_str().unwrap()], "field `name`");
+    // a grid table of the wrong number of rows
+    lekalo()
+        .arg("interpolate")
+        .arg(&two)
+        .args(["--grid", "2x2x2"])
+        .assert()
+        .code(2)
+        .stderr(contains("8 grid nodes"));
+}

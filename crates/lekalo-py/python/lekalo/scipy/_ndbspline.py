@@ -174,8 +174,8 @@ def make_ndbspl(points: Any, values: Any, k: Any = 3, *, solver: Any = None, **s
     if complex_:
         # real and imaginary parts as two trailing columns, solved together
         v = np.stack((v.real, v.imag), axis=-1)
-    spline = _lekalo.TensorBSpline.interpolate_grid(axes, v, degrees=list(k), knots=list(t))
-    c = spline.c
+    # the coefficients alone, moved into NumPy (no spline object holding a second copy)
+    c = _lekalo.TensorBSpline.interpolate_grid_c(axes, v, degrees=list(k), knots=list(t))
     if complex_:
         c = c[..., 0] + 1j * c[..., 1]
     return NdBSpline(t, c, k)
