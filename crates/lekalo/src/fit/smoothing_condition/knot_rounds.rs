@@ -8,10 +8,14 @@ use crate::error::{Error, Result};
 use crate::fit::banded::BandedQr;
 use crate::fit::progress::Steps;
 
-/// Step 2 of [`smoothing_condition`](super::smoothing_condition): the rounds of least squares and knot addition, at most
-/// `cap` interior knots, each round's knot vector passed to `seen` before its pass, each round a
+/// Step 2 of [`smoothing_condition`](super::smoothing_condition): the rounds of least squares
+/// and knot addition, each round's knot vector passed to `seen` before its pass, each round a
 /// step of `steps`; the end knots at `domain` (checked to hold the data), else at the data's
-/// ends; a round's second and later knots placed as `rounds` says.
+/// ends; a round's second and later knots placed as `rounds` says. `(cap, then)` bound the
+/// interior knots: the rounds add at most up to `cap`; once there, they end with the
+/// least-squares spline if `then ≤ cap` (FITPACK `curfit`'s `ier = 1` at `nest`), else go on
+/// up to `then` with the same `nplus` and previous residual (a second `curfit` call with
+/// `iopt = 1` from the knots reached, as SciPy's `UnivariateSpline` makes it).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn knot_rounds(
     obs: &Observations,
@@ -19,7 +23,7 @@ pub(super) fn knot_rounds(
     s: f64,
     domain: Option<(f64, f64)>,
     rounds: KnotRounds,
-    cap: usize,
+    (mut cap, then): (usize, usize),
     steps: &Steps<'_, '_>,
     seen: &mut dyn FnMut(&[f64]),
 ) -> Result<Rounds<BandedQr>> {
@@ -52,8 +56,11 @@ pub(super) fn knot_rounds(
             fp0 = fp;
         }
         let fpms = fp - s;
-        if fpms < 0.0 || (fpms == 0.0 && s > 0.0) {
-            if -fpms < acc || n == nmin {
+        if accepts_least_squares(fpms, acc) {
+            return Ok(Rounds::Done { t, c });
+        }
+        if fpms < 0.0 {
+            if n == nmin {
                 return Ok(Rounds::Done { t, c });
             }
             return Ok(Rounds::Smooth {
@@ -63,9 +70,18 @@ pub(super) fn knot_rounds(
                 fp_inf: fp,
             });
         }
-        if n >= nmax || knots.count() >= cap {
-            // interpolation, or as many knots as allowed
+        if n >= nmax {
+            // interpolation
             return Ok(Rounds::Done { t, c });
+        }
+        if knots.count() >= cap {
+            if then <= cap {
+                // as many knots as allowed
+                return Ok(Rounds::Done { t, c });
+            }
+            // `curfit` called again with `iopt = 1`: it restores `fp0`, `fpold` and `nplus`
+            // and repeats this pass, so the rounds go on as if they had not stopped
+            cap = then;
         }
         nplus = if n == nmin {
             1
@@ -358,6 +374,15 @@ fn end_deficit(counts: impl Iterator<Item = usize>, e: usize) -> (usize, usize) 
         deficit += e.saturating_sub(c);
     }
     (deficit, read)
+}
+
+/// Whether a round's least-squares fit, whose residual is `s + fpms`, is the answer as it
+/// stands: its residual is within `acc = SMOOTHING_RTOL·s` of `s` on either side,
+/// `|fp − s| < acc` (FITPACK `fpcurf`, `fppara`, `fpperi`, `fpclos`: `abs(fpms).lt.acc`; SciPy's
+/// `generate_knots` alike). Such a fit may lie above `s`, by less than `acc`; with `s = 0`
+/// (`acc = 0`) none is.
+pub(in crate::fit) fn accepts_least_squares(fpms: f64, acc: f64) -> bool {
+    fpms.abs() < acc
 }
 
 /// FITPACK's number of knots to add next: `min(2·nplus, max(⌊nplus·fpms/decrease⌋,
