@@ -14,8 +14,9 @@ use crate::fit::progress::Steps;
 /// ends; a round's second and later knots placed as `rounds` says. `(cap, then)` bound the
 /// interior knots: the rounds add at most up to `cap`; once there, they end with the
 /// least-squares spline if `then ≤ cap` (FITPACK `curfit`'s `ier = 1` at `nest`), else go on
-/// up to `then` with the same `nplus` and previous residual (a second `curfit` call with
-/// `iopt = 1` from the knots reached, as SciPy's `UnivariateSpline` makes it).
+/// up to `then` from the knots reached, adding one knot next as a first round does (a second
+/// `fpcurf` call with `iopt = 1` and the `ier = 1` of the first, as SciPy's `UnivariateSpline`
+/// makes it).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn knot_rounds(
     obs: &Observations,
@@ -74,16 +75,19 @@ pub(super) fn knot_rounds(
             // interpolation
             return Ok(Rounds::Done { t, c });
         }
+        // one knot in the first round
+        let mut first = n == nmin;
         if knots.count() >= cap {
             if then <= cap {
                 // as many knots as allowed
                 return Ok(Rounds::Done { t, c });
             }
-            // `curfit` called again with `iopt = 1`: it restores `fp0`, `fpold` and `nplus`
-            // and repeats this pass, so the rounds go on as if they had not stopped
+            // `fpcurf` called again with `iopt = 1` and the `ier = 1` of its stop: it repeats
+            // this pass and, `ier` not being 0, adds one knot as in the first round
             cap = then;
+            first = true;
         }
-        nplus = if n == nmin {
+        nplus = if first {
             1
         } else {
             next_nplus(nplus, fpms, fpold - fp, acc)

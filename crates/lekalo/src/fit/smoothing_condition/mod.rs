@@ -244,10 +244,10 @@ pub enum KnotLimit {
     /// least-squares spline on them, whatever its residual (FITPACK `curfit`, `ier = 1`).
     Stop(usize),
     /// The rounds stop at this many knots as [`KnotLimit::Stop`], then go on from the knots
-    /// reached without limit, keeping the number of knots a round adds and the residuals that
-    /// set it: SciPy's `UnivariateSpline`, which calls `curfit` with
-    /// `nest = max(m/2, 2k + 2)` and, on `ier = 1`, again with `iopt = 1` and `nest = m + k + 1`.
-    /// The knots differ from an unlimited run's where the limit cut a round's additions short.
+    /// reached without limit, the next round adding one knot as the first round does: SciPy's
+    /// `UnivariateSpline`, which calls `fpcurf` with `nest = max(m/2, 2k + 2)` and, on
+    /// `ier = 1`, again with `iopt = 1`, `nest = m + k + 1` and that `ier = 1`, which resets
+    /// FITPACK's `nplus` to 1. The knots differ from an unlimited run's from the limit on.
     Resume(usize),
 }
 

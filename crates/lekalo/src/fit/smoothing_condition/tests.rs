@@ -169,9 +169,9 @@ fn a_round_within_the_tolerance_above_s_is_the_answer() {
 }
 
 /// SciPy's `UnivariateSpline` stops the rounds at `nest = max(m/2, 2k + 2)` knots and goes on
-/// from the knots reached ([`KnotLimit::Resume`]): the knots of the stopped rounds are kept, the
-/// rounds end within the tolerance of `s`, and where the limit cut a round's additions short the
-/// knots are not those of unlimited rounds.
+/// from the knots reached ([`KnotLimit::Resume`]), one knot in the next round: the knots of the
+/// stopped rounds are kept, the knots are SciPy's, the rounds end within the tolerance of `s`,
+/// with other knots than unlimited rounds (SciPy's `splrep`: 20 breakpoints against 16).
 #[test]
 fn resumed_rounds_go_on_from_the_knots_of_the_limit() {
     let (x, y) = noisy_sine(40);
@@ -192,6 +192,10 @@ fn resumed_rounds_go_on_from_the_knots_of_the_limit() {
     for u in &stopped.curve.knots().as_slice()[k + 1..16] {
         assert!(t.contains(u), "knot {u} of the stopped rounds lost");
     }
+    // SciPy 1.17's `UnivariateSpline(x, y, s=0.05).get_knots()`: the data at these indices
+    let scipy = [0, 3, 5, 8, 10, 13, 15, 18, 20, 23, 25, 28, 30, 35, 37, 39];
+    let breaks: Vec<f64> = scipy.iter().map(|&i| x[i]).collect();
+    assert_eq!(&t[k..t.len() - k], &breaks[..], "SciPy's knots");
     let unlimited = fit(KnotLimit::Unlimited);
     assert_ne!(unlimited.curve.knots().as_slice(), t);
     // a limit no round reaches changes nothing
