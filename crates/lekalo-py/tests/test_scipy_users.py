@@ -1620,14 +1620,6 @@ def test_make_ndbspl_even_and_mixed_degrees():
     same(snippet, rtol=1e-10, scale=3.0)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="needs Rust (not in differences.toml): SciPy's UnivariateSpline runs FITPACK's fpcurf0 with "
-    "nest = max(m // 2, 2k + 2) and, when it runs out (ier=1), continues with fpcurf1 (iopt=1) from the "
-    "knots reached with nest = m + k + 1; lekalo.scipy's UnivariateSpline is splrep's single run with "
-    "nest = m + k + 1. On 40 noisy samples of sin with s=0.05: SciPy 22 interior knots, lekalo 26 "
-    "(SciPy's own splrep also 26), values apart by 0.064",
-)
 def test_univariatespline_small_s_many_knots():
     """UnivariateSpline(x, y, s=small) on noisy data, where FITPACK needs more than m/2 knots."""
 
@@ -1640,13 +1632,6 @@ def test_univariatespline_small_s_many_knots():
     same(snippet, rtol=1e-3)  # smoothing condition: within 0.001*s (module docstring)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="needs Rust (not in differences.toml): FITPACK's curfit accepts a round's least-squares spline "
-    "whose residual is within 0.001*s above s (|fp - s| < 0.001 s, fp = 0.500141 for s = 0.5 here); "
-    "lekalo's knot rounds go on until fp <= s and add a knot: splrep on 50 samples of sin + 0.1 noise "
-    "(seed 147) with s = m*sigma**2 gives SciPy 13 knots, lekalo 14 (UnivariateSpline alike)",
-)
 def test_splrep_textbook_s_residual_just_above_s():
     """splrep(x, y, s=m*sigma**2), the tutorial's choice of s for noise of known sigma."""
 

@@ -4,8 +4,9 @@
 
 use lekalo::fit::{
     constrained_smoothing_condition, constrained_smoothing_spline, gcv_score as lk_gcv,
-    periodic_smoothing_knot_sequence, smoothing_condition_with_rounds, smoothing_knot_sequence,
-    smoothing_on_knots, smoothing_spline, CurveFit, FitData, KnotRounds, Lambda, ShapeConstraints,
+    periodic_smoothing_knot_sequence, smoothing_condition_with_limit,
+    smoothing_condition_with_rounds, smoothing_knot_sequence, smoothing_on_knots, smoothing_spline,
+    CurveFit, FitData, KnotLimit, KnotRounds, Lambda, ShapeConstraints,
 };
 use lekalo::Progress;
 use pyo3::prelude::*;
@@ -125,7 +126,8 @@ pub(crate) fn gcv_score(
 }
 
 /// The spline of degree `k` with the fewest knots whose weighted residual `Σ w_k |y_k −
-/// f(x_k)|²` is at most `s` (the smoothing condition of SciPy's `splrep`/`make_splrep`,
+/// f(x_k)|²` is at most `s`, or a least-squares spline above it by less than `0.001·s` as
+/// FITPACK accepts it (the smoothing condition of SciPy's `splrep`/`make_splrep`,
 /// FITPACK `curfit`; `docs/theory/fitting.md#smoothing-condition`). `s = 0` interpolates.
 /// With a knot vector `t` (SciPy's full vector), the spline on those knots whose `k`-th
 /// derivative jumps least with the residual `s` (`docs/theory/fitting.md#smoothing-on-given-knots`).
@@ -133,7 +135,10 @@ pub(crate) fn gcv_score(
 /// the data, puts the end knots at `a` and `b` (SciPy's `xb`, `xe`; without `t`).
 /// `knot_rounds` chooses how each round of knot addition places its knots: `"shared"` (the
 /// default) as FITPACK's `curfit` and SciPy's `splrep`, `"refit"` as SciPy's `make_splrep` (a
-/// fit after every knot; `docs/theory/fitting.md#smoothing-condition`).
+/// fit after every knot; `docs/theory/fitting.md#smoothing-condition`). `nest` bounds the knots
+/// the rounds place (SciPy's `nest`, end knots counted): they stop there with the least-squares
+/// spline, or with `resume=True` go on from the knots reached without the bound, as SciPy's
+/// `UnivariateSpline` (FITPACK `curfit` again with `iopt=1`).
 /// Shape constraints (keyword arguments as `make_smoothing_spline`'s) make it the constrained
 /// cubic smoothing spline whose residual is `s` (knots at the data, its λ found by bisection;
 /// no `t`, `domain` or `knot_rounds`, `k = 3`; `docs/theory/fitting.md#shape-constraints`).
@@ -154,7 +159,7 @@ pub(crate) fn gcv_score(
 /// >>> bool((np.diff(c(np.linspace(0, 1, 500))[:, 0]) >= -1e-12).all())
 /// True
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None, knot_rounds = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None, integral = None, periodic = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None, knot_rounds=None, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None, integral=None, periodic=None)")]
+#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None, knot_rounds = None, nest = None, resume = false, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None, integral = None, periodic = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None, knot_rounds=None, nest=None, resume=False, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None, integral=None, periodic=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn make_splrep<'py>(
     py: Python<'py>,
@@ -166,6 +171,8 @@ pub(crate) fn make_splrep<'py>(
     t: Option<&Bound<'py, PyAny>>,
     domain: Option<(f64, f64)>,
     knot_rounds: Option<&str>,
+    nest: Option<IntArg>,
+    resume: bool,
     increasing: Option<&Bound<'py, PyAny>>,
     decreasing: Option<&Bound<'py, PyAny>>,
     convex: Option<&Bound<'py, PyAny>>,
@@ -182,18 +189,35 @@ pub(crate) fn make_splrep<'py>(
         increasing, decreasing, convex, concave, min, max, through, slope_at, integral, periodic,
     ])?;
     let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
-    let f = shaped_condition_fit(py, &data, (k, s, t, domain, knot_rounds), &shape)?;
+    let limit = knot_limit(nest, resume)?;
+    let f = shaped_condition_fit(py, &data, (k, s, t, domain, knot_rounds, limit), &shape)?;
     Ok(PyBSplineCurve::wrap(f.curve))
 }
 
-/// The smoothing condition's own arguments: `k`, `s`, `t`, `domain`, `knot_rounds`.
+/// The smoothing condition's own arguments: `k`, `s`, `t`, `domain`, `knot_rounds` and the
+/// limit of `nest` and `resume`.
 type ConditionArgs<'a, 'py> = (
     usize,
     f64,
     Option<&'a Bound<'py, PyAny>>,
     Option<(f64, f64)>,
     Option<&'a str>,
+    KnotLimit,
 );
+
+/// `nest=`, `resume=`: the knots the rounds may place (FITPACK's `nest`) and whether they go on
+/// from there ([`KnotLimit`]); `resume` without `nest` is refused.
+fn knot_limit(nest: Option<IntArg>, resume: bool) -> PyResult<KnotLimit> {
+    match (nest.map(|n| n.count("nest")).transpose()?, resume) {
+        (None, false) => Ok(KnotLimit::Unlimited),
+        (None, true) => Err(bad(
+            "resume: the rounds resume after stopping at nest knots; give nest or drop resume"
+                .into(),
+        )),
+        (Some(n), false) => Ok(KnotLimit::Stop(n)),
+        (Some(n), true) => Ok(KnotLimit::Resume(n)),
+    }
+}
 
 /// The smoothing condition with or without shape constraints: [`condition_fit`] when there are
 /// none, else the constrained cubic smoothing spline whose residual is `s` (knots at the data:
@@ -201,12 +225,18 @@ type ConditionArgs<'a, 'py> = (
 fn shaped_condition_fit(
     py: Python<'_>,
     data: &Data<'_>,
-    (k, s, t, domain, knot_rounds): ConditionArgs<'_, '_>,
+    (k, s, t, domain, knot_rounds, limit): ConditionArgs<'_, '_>,
     shape: &ShapeConstraints,
 ) -> PyResult<CurveFit> {
     let rounds = self::knot_rounds(knot_rounds)?;
     if shape.is_empty() {
-        return condition_fit(py, data, k, s, t, domain, rounds);
+        return condition_fit(py, data, (k, s, t, domain, rounds, limit));
+    }
+    if limit != KnotLimit::Unlimited {
+        return Err(bad(
+            "nest: with shape constraints the smoothing condition fits the cubic smoothing spline (knots at the data); drop nest"
+                .into(),
+        ));
     }
     if knot_rounds.is_some() {
         return Err(bad(
@@ -233,14 +263,18 @@ fn shaped_condition_fit(
 
 /// The smoothing condition on FITPACK's knots placed in `rounds` (end knots at `domain` when
 /// given) or, with `t`, the smoothing on those knots.
+#[allow(clippy::type_complexity)]
 fn condition_fit(
     py: Python<'_>,
     data: &Data<'_>,
-    k: usize,
-    s: f64,
-    t: Option<&Bound<'_, PyAny>>,
-    domain: Option<(f64, f64)>,
-    rounds: KnotRounds,
+    (k, s, t, domain, rounds, limit): (
+        usize,
+        f64,
+        Option<&Bound<'_, PyAny>>,
+        Option<(f64, f64)>,
+        KnotRounds,
+        KnotLimit,
+    ),
 ) -> PyResult<CurveFit> {
     let fd = data.fit_data("x")?;
     let kv = t.map(knot_vector).transpose()?;
@@ -249,9 +283,17 @@ fn condition_fit(
             "domain: the knots t set the domain (their end knots); drop domain or t".into(),
         ));
     }
+    if kv.is_some() && limit != KnotLimit::Unlimited {
+        return Err(bad(
+            "nest: the knots t are given, no rounds place them; drop nest or t".into(),
+        ));
+    }
     py.detach(|| match &kv {
         Some(kv) => smoothing_on_knots(&fd, k, kv, s),
-        None => smoothing_condition_with_rounds(&fd, k, s, domain, rounds, &Progress::new()),
+        None => {
+            let quiet = Progress::new();
+            smoothing_condition_with_limit(&fd, k, s, domain, rounds, limit, &quiet)
+        }
     })
     .map_err(|e| match e {
         lekalo::Error::ParameterOutOfDomain { .. } | lekalo::Error::EmptyDomain { .. }
@@ -269,7 +311,7 @@ fn condition_fit(
 /// residual is `s` (its λ, found by bisection, in `report["lam"]`; no `t`, `k = 3`).
 /// `domain=(a, b)` as in `make_splrep`: the end knots, reaching beyond the data.
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None, knot_rounds = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None, integral = None, periodic = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None, knot_rounds=None, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None, integral=None, periodic=None)")]
+#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None, knot_rounds = None, nest = None, resume = false, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None, integral = None, periodic = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None, knot_rounds=None, nest=None, resume=False, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None, integral=None, periodic=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_smoothing_condition<'py>(
     py: Python<'py>,
@@ -281,6 +323,8 @@ pub(crate) fn fit_smoothing_condition<'py>(
     t: Option<&Bound<'py, PyAny>>,
     domain: Option<(f64, f64)>,
     knot_rounds: Option<&str>,
+    nest: Option<IntArg>,
+    resume: bool,
     increasing: Option<&Bound<'py, PyAny>>,
     decreasing: Option<&Bound<'py, PyAny>>,
     convex: Option<&Bound<'py, PyAny>>,
@@ -297,7 +341,8 @@ pub(crate) fn fit_smoothing_condition<'py>(
         increasing, decreasing, convex, concave, min, max, through, slope_at, integral, periodic,
     ])?;
     let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
-    let f = shaped_condition_fit(py, &data, (k, s, t, domain, knot_rounds), &shape)?;
+    let limit = knot_limit(nest, resume)?;
+    let f = shaped_condition_fit(py, &data, (k, s, t, domain, knot_rounds, limit), &shape)?;
     with_report(py, f)
 }
 

@@ -100,8 +100,9 @@ pub(crate) use smoothing::{
 pub use smoothing::{gcv_score, smoothing_spline, smoothing_spline_with_progress, Lambda};
 pub use smoothing_condition::{
     smoothing_condition, smoothing_condition_in, smoothing_condition_in_with_progress,
-    smoothing_condition_with_progress, smoothing_condition_with_rounds, smoothing_knot_sequence,
-    KnotRounds, SMOOTHING_RTOL,
+    smoothing_condition_with_limit, smoothing_condition_with_progress,
+    smoothing_condition_with_rounds, smoothing_knot_sequence, KnotLimit, KnotRounds,
+    SMOOTHING_RTOL,
 };
 pub use smoothing_on_knots::{smoothing_on_knots, smoothing_on_knots_with_progress};
 // the pieces of FITPACK's smoothing condition that the smoothing on tensor grids shares

@@ -7,7 +7,7 @@ use lekalo::fit::{
     robust_least_squares, smoothing_condition, smoothing_condition_in,
     smoothing_condition_with_rounds, smoothing_knot_sequence, smoothing_spline,
     surface_scattered_least_squares, Deviation, EndConstraints, FitData, KnotRounds, Lambda,
-    RobustLoss, ToleranceOptions,
+    RobustLoss, ToleranceOptions, SMOOTHING_RTOL,
 };
 use lekalo::{BSplineCurve, Error, KnotVector, Points, PointsRef};
 use proptest::prelude::*;
@@ -643,7 +643,8 @@ proptest! {
         let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
         let s = s_frac * count as f64 * amp * amp / 12.0;
         let fit = smoothing_condition(&data, 3, s).unwrap();
-        prop_assert!(fit.report.weighted_rss <= s, "rss {} > s {}", fit.report.weighted_rss, s);
+        // FITPACK's acceptance: a round's least-squares spline within 0.001·s above s
+        prop_assert!(fit.report.weighted_rss < s * (1.0 + SMOOTHING_RTOL), "rss {} > s {}", fit.report.weighted_rss, s);
         let q: Vec<f64> = x.iter().zip(&y).flat_map(|(a, b)| [*a, *b]).collect();
         let tol = 10f64.powf(tol_exp);
         for how in [Deviation::Distance, Deviation::Parameter] {
@@ -690,7 +691,7 @@ proptest! {
         match smoothing_condition(&data, degree, s) {
             Ok(fit) => {
                 prop_assert!(s >= floor * (1.0 - 1e-12), "s = {s} below the floor {floor} was accepted");
-                prop_assert!(fit.report.weighted_rss <= s + 1e-12 * scale, "rss {} > s {s}", fit.report.weighted_rss);
+                prop_assert!(fit.report.weighted_rss < s * (1.0 + SMOOTHING_RTOL) + 1e-12 * scale, "rss {} > s {s}", fit.report.weighted_rss);
             }
             Err(e @ Error::InvalidArgument { .. }) if e.arg() == Some(lekalo::Arg::S) => {
                 prop_assert!(s <= floor * (1.0 + 1e-12), "s = {s} above the floor {floor} was refused");
@@ -723,7 +724,7 @@ proptest! {
         let quiet = lekalo::Progress::new();
         for rounds in [KnotRounds::Shared, KnotRounds::Refit] {
             match smoothing_condition_with_rounds(&data, degree, s, None, rounds, &quiet) {
-                Ok(fit) => prop_assert!(fit.report.weighted_rss <= s + 1e-12 * total, "{rounds:?}: rss {} > s {s}", fit.report.weighted_rss),
+                Ok(fit) => prop_assert!(fit.report.weighted_rss < s * (1.0 + SMOOTHING_RTOL) + 1e-12 * total, "{rounds:?}: rss {} > s {s}", fit.report.weighted_rss),
                 Err(e) => prop_assert!(false, "{rounds:?}: unexpected error {e}"),
             }
         }

@@ -84,6 +84,16 @@ def splrep(
     ``make_splrep``) and least squares on given interior knots ``t`` (``task=-1``), with the end
     knots at ``xb`` and ``xe``; ``per=1`` ignores ``xb``/``xe`` as FITPACK's ``percur`` does.
     Returns ``(t, c, k)`` with ``c`` zero-padded to ``len(t)``, as FITPACK."""
+    return _splrep(x, y, w, xb, xe, k, task, s, t, full_output, per, quiet)
+
+
+def _splrep(
+    x: Any, y: Any, w: Any, xb: Any, xe: Any, k: int, task: int, s: Any, t: Any, full_output: int, per: int,
+    quiet: int, nest: Any = None,
+):
+    """``splrep``; with ``nest`` (``s > 0``, no ``t``, ``per=0``) the rounds of the smoothing
+    condition stop at ``nest`` knots and go on from the knots reached, as SciPy's
+    ``UnivariateSpline`` calls FITPACK's ``curfit`` (lekalo's ``resume``)."""
     x = np.atleast_1d(np.asarray(x, dtype=np.float64))
     y = np.atleast_1d(np.asarray(y, dtype=np.float64))
     m = len(x)
@@ -138,7 +148,9 @@ def splrep(
         # FITPACK's knot placement and smoothing condition, lekalo's make_splrep: the same
         # knots; the coefficients meet FITPACK's tolerance |fp - s| <= 0.001 s, not its bits;
         # the end knots at xb and xe
-        curve = _lekalo.make_splrep(x, y, w=w, k=k, s=float(s), domain=(xb, xe) if wide else None)
+        curve = _lekalo.make_splrep(
+            x, y, w=w, k=k, s=float(s), domain=(xb, xe) if wide else None, nest=nest, resume=nest is not None
+        )
         spl = BSpline.construct_fast(np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control[:, 0]), k)
     tck = (spl.t, _pad_rows(spl.c, spl.t.shape[0]), spl.k)
     if full_output:

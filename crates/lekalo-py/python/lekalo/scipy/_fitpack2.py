@@ -28,7 +28,7 @@ from ._bivariate import (
     _value,
 )
 from ._bspline import _one_number, _pad_rows
-from ._fitpack import spalde, splantider, splder, splev, splint, splrep, sproot
+from ._fitpack import _splrep, spalde, splantider, splder, splev, splint, sproot
 from ._interpolate import make_lsq_spline
 from ._splrep import make_splrep
 
@@ -45,7 +45,9 @@ def _ext_mode(ext: Any) -> int:
 class UnivariateSpline:
     """``scipy.interpolate.UnivariateSpline``: the spline of degree ``k`` on FITPACK's knots whose
     weighted residual ``Σ (w_i (y_i − s(x_i)))²`` is ``s`` (``len(w)`` by default), lekalo's
-    ``splrep``."""
+    ``splrep`` with SciPy's knot limit: the rounds stop at ``max(m // 2, 2k + 2)`` knots and go
+    on from there, as SciPy's second ``curfit`` call (lekalo's ``make_splrep(nest=…,
+    resume=True)``)."""
 
     def __init__(
         self, x: Any, y: Any, w: Any = None, bbox: Any = (None, None), k: int = 3, s: Any = None,
@@ -120,7 +122,10 @@ class UnivariateSpline:
         x = np.asarray(x, dtype=np.float64)
         y = np.asarray(y, dtype=np.float64)
         self._data = (x, y, w, xb, xe, k, s)
-        self._eval_args = splrep(x, y, w=w, xb=xb, xe=xe, k=k, s=s, t=t)
+        # SciPy's curfit call: nest = max(m // 2, 2k + 2) knots, then on ier = 1 (nest reached)
+        # a second call with iopt = 1 from the knots reached and nest = m + k + 1
+        nest = None if s == 0 or t is not None else max(len(x) // 2, 2 * k + 2)
+        self._eval_args = _splrep(x, y, w, xb, xe, k, 0, s, t, 0, 0, 1, nest=nest)
         if s == 0:
             # FITPACK reports fp = 0 for the interpolating spline (s = 0), not the rounding left
             self._fp = 0.0

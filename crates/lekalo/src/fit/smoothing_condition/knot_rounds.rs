@@ -8,10 +8,15 @@ use crate::error::{Error, Result};
 use crate::fit::banded::BandedQr;
 use crate::fit::progress::Steps;
 
-/// Step 2 of [`smoothing_condition`](super::smoothing_condition): the rounds of least squares and knot addition, at most
-/// `cap` interior knots, each round's knot vector passed to `seen` before its pass, each round a
+/// Step 2 of [`smoothing_condition`](super::smoothing_condition): the rounds of least squares
+/// and knot addition, each round's knot vector passed to `seen` before its pass, each round a
 /// step of `steps`; the end knots at `domain` (checked to hold the data), else at the data's
-/// ends; a round's second and later knots placed as `rounds` says.
+/// ends; a round's second and later knots placed as `rounds` says. `(cap, then)` bound the
+/// interior knots: the rounds add at most up to `cap`; once there, they end with the
+/// least-squares spline if `then ≤ cap` (FITPACK `curfit`'s `ier = 1` at `nest`), else go on
+/// up to `then` from the knots reached, adding one knot next as a first round does (a second
+/// `fpcurf` call with `iopt = 1` and the `ier = 1` of the first, as SciPy's `UnivariateSpline`
+/// makes it).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn knot_rounds(
     obs: &Observations,
@@ -19,7 +24,7 @@ pub(super) fn knot_rounds(
     s: f64,
     domain: Option<(f64, f64)>,
     rounds: KnotRounds,
-    cap: usize,
+    (mut cap, then): (usize, usize),
     steps: &Steps<'_, '_>,
     seen: &mut dyn FnMut(&[f64]),
 ) -> Result<Rounds<BandedQr>> {
@@ -52,8 +57,11 @@ pub(super) fn knot_rounds(
             fp0 = fp;
         }
         let fpms = fp - s;
-        if fpms < 0.0 || (fpms == 0.0 && s > 0.0) {
-            if -fpms < acc || n == nmin {
+        if accepts_least_squares(fpms, acc) {
+            return Ok(Rounds::Done { t, c });
+        }
+        if fpms < 0.0 {
+            if n == nmin {
                 return Ok(Rounds::Done { t, c });
             }
             return Ok(Rounds::Smooth {
@@ -63,11 +71,23 @@ pub(super) fn knot_rounds(
                 fp_inf: fp,
             });
         }
-        if n >= nmax || knots.count() >= cap {
-            // interpolation, or as many knots as allowed
+        if n >= nmax {
+            // interpolation
             return Ok(Rounds::Done { t, c });
         }
-        nplus = if n == nmin {
+        // one knot in the first round
+        let mut first = n == nmin;
+        if knots.count() >= cap {
+            if then <= cap {
+                // as many knots as allowed
+                return Ok(Rounds::Done { t, c });
+            }
+            // `fpcurf` called again with `iopt = 1` and the `ier = 1` of its stop: it repeats
+            // this pass and, `ier` not being 0, adds one knot as in the first round
+            cap = then;
+            first = true;
+        }
+        nplus = if first {
             1
         } else {
             next_nplus(nplus, fpms, fpold - fp, acc)
@@ -358,6 +378,15 @@ fn end_deficit(counts: impl Iterator<Item = usize>, e: usize) -> (usize, usize) 
         deficit += e.saturating_sub(c);
     }
     (deficit, read)
+}
+
+/// Whether a round's least-squares fit, whose residual is `s + fpms`, is the answer as it
+/// stands: its residual is within `acc = SMOOTHING_RTOL·s` of `s` on either side,
+/// `|fp − s| < acc` (FITPACK `fpcurf`, `fppara`, `fpperi`, `fpclos`: `abs(fpms).lt.acc`; SciPy's
+/// `generate_knots` alike). Such a fit may lie above `s`, by less than `acc`; with `s = 0`
+/// (`acc = 0`) none is.
+pub(in crate::fit) fn accepts_least_squares(fpms: f64, acc: f64) -> bool {
+    fpms.abs() < acc
 }
 
 /// FITPACK's number of knots to add next: `min(2·nplus, max(⌊nplus·fpms/decrease⌋,
