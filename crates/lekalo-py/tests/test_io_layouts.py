@@ -162,8 +162,9 @@ def test_the_parquet_table_snippet_of_formats_md_runs_as_written(tmp_path, monke
     # (i/5, j/4, k/3), which the finer grid (i/10, j/8, k/6) holds
     y = field["y"].to_numpy().reshape(11, 9, 7)
     np.testing.assert_allclose(y[::2, ::2, ::2], values, rtol=0, atol=1e-12)
+    # the parameters a + (b - a)·(k/(m - 1)), here k/10 to the bit
     x1 = field["x1"].to_numpy().reshape(11, 9, 7)
-    assert np.array_equal(x1[:, 0, 0], np.linspace(0, 1, 11))
+    assert np.array_equal(x1[:, 0, 0], np.arange(11) / 10)
 
 
 def test_parquet_tables_written_by_pandas(tmp_path):
@@ -171,14 +172,14 @@ def test_parquet_tables_written_by_pandas(tmp_path):
     # of a null and a non-finite number name the row and the column
     exe = _binary()
     rng = np.random.default_rng(5)
-    values = rng.random((5, 4, 3))
+    values = rng.random((5, 4, 4))
     grid = tmp_path / "grid.parquet"
     pd.DataFrame({"f": values.ravel()}).to_parquet(grid)
     npy = tmp_path / "grid.npy"
     np.save(npy, values)
     a, b = tmp_path / "a.json", tmp_path / "b.json"
-    subprocess.run([exe, "interpolate", str(grid), "--grid", "5x4x3", "-o", str(a)], check=True)
-    subprocess.run([exe, "interpolate", str(npy), "--grid", "5x4x3", "-o", str(b)], check=True)
+    subprocess.run([exe, "interpolate", str(grid), "--grid", "5x4x4", "-o", str(a)], check=True)
+    subprocess.run([exe, "interpolate", str(npy), "--grid", "5x4x4", "-o", str(b)], check=True)
     assert a.read_text() == b.read_text()
     at = pd.DataFrame(
         {
