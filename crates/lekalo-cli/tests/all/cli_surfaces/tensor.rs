@@ -291,16 +291,7 @@ fn a_nurbs_tensor_evaluates_with_its_weights() {
 
 /// `eval --at` of `file` on a few points of `[0, 1]³`, as CSV text.
 fn eval_at(file: &Path) -> String {
-    let out = lekalo()
-        .arg("eval")
-        .arg(file)
-        .args(["--at", "0.3,0.7,0.45,1,1,1,0,0.25,0.5"])
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
-    String::from_utf8(out).unwrap()
+    eval_csv(file, &["--at", "0.3,0.7,0.45,1,1,1,0,0.25,0.5"])
 }
 
 #[test]

@@ -387,29 +387,7 @@ impl ConeProgram {
         inequalities: &[(Row, usize)],
         cone_rows: &[([Row; 3], usize)],
     ) -> std::result::Result<Vec<f64>, Failure> {
-        let n = self.p.n;
-        // P: upper triangle, column by column
-        let (b, w) = (self.p.b, self.p.b + 1);
-        let mut colptr = Vec::with_capacity(n + 1);
-        let mut rowval = Vec::new();
-        let mut nzval = Vec::new();
-        colptr.push(0);
-        for j in 0..n {
-            for i in j.saturating_sub(b)..=j {
-                let v = self.p.a[i * w + j - i];
-                if v != 0.0 {
-                    rowval.push(i);
-                    nzval.push(v);
-                }
-            }
-            colptr.push(rowval.len());
-        }
-        let upper = SparseUpper {
-            n,
-            colptr,
-            rowval,
-            nzval,
-        };
+        let upper = SparseUpper::of_band(&self.p);
         solve_sparse(&upper, &self.q, equalities, inequalities, cone_rows)
     }
 }
@@ -423,6 +401,32 @@ pub(crate) struct SparseUpper {
     pub(crate) colptr: Vec<usize>,
     pub(crate) rowval: Vec<usize>,
     pub(crate) nzval: Vec<f64>,
+}
+
+impl SparseUpper {
+    /// The upper triangle of the symmetric band `p`, column by column, its zeros left out.
+    pub(crate) fn of_band(p: &SymBand) -> Self {
+        let (n, w) = (p.n, p.b + 1);
+        let mut colptr = Vec::with_capacity(n + 1);
+        let (mut rowval, mut nzval) = (Vec::new(), Vec::new());
+        colptr.push(0);
+        for j in 0..n {
+            for i in j.saturating_sub(p.b)..=j {
+                let v = p.a[i * w + j - i];
+                if v != 0.0 {
+                    rowval.push(i);
+                    nzval.push(v);
+                }
+            }
+            colptr.push(rowval.len());
+        }
+        SparseUpper {
+            n,
+            colptr,
+            rowval,
+            nzval,
+        }
+    }
 }
 
 /// Clarabel on `½ xᵀPx + qᵀx` over the `P.n` variables and one auxiliary per cone, with the

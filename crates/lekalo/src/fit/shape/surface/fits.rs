@@ -194,26 +194,7 @@ pub fn constrained_surface_scattered_least_squares(
         net,
         ..
     } = scattered_normal_equations(data, weights, (p, q), (ku, kv), penalty, &Progress::new())?;
-    let (n, w) = (a.n, a.b + 1);
-    let mut colptr = Vec::with_capacity(n + 1);
-    let (mut rowval, mut nzval) = (Vec::new(), Vec::new());
-    colptr.push(0);
-    for j in 0..n {
-        for i in j.saturating_sub(a.b)..=j {
-            let v = a.a[i * w + j - i];
-            if v != 0.0 {
-                rowval.push(i);
-                nzval.push(v);
-            }
-        }
-        colptr.push(rowval.len());
-    }
-    let upper = SparseUpper {
-        n,
-        colptr,
-        rowval,
-        nzval,
-    };
+    let upper = SparseUpper::of_band(&a);
     let lin: Vec<f64> = rhs.iter().map(|r| -r / scale.y).collect();
     let coef = solve(&space, &upper, &lin, center[0], &scale, constraints)?;
     let surface = BSplineSurface::from_knot_vectors(
