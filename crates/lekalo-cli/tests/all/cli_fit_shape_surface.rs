@@ -47,21 +47,24 @@ fn surface_of(args: &[&str], stdin: &str) -> (lekalo::BSplineSurface, serde_json
     (s, v)
 }
 
+/// `fit` of the table on standard input as a 16 × 12 grid, a 6 × 5 net of degree 2.
+const GRID_FIT: [&str; 8] = [
+    "fit",
+    "-",
+    "--grid",
+    "16x12",
+    "--ctrl-grid",
+    "6x5",
+    "--degree",
+    "2",
+];
+
 #[test]
 fn a_table_on_a_grid_keeps_rising_in_both_directions() {
     let both = SurfaceShapeConstraints::new()
         .with(SurfaceShape::Increasing(Direction::U))
         .with(SurfaceShape::Increasing(Direction::V));
-    let plain = [
-        "fit",
-        "-",
-        "--grid",
-        "16x12",
-        "--ctrl-grid",
-        "6x5",
-        "--degree",
-        "2",
-    ];
+    let plain = GRID_FIT;
     // rows u, v, z: the plain fit of the table (values only, at the same coordinates) dips
     let values: String = table()
         .lines()
@@ -138,16 +141,7 @@ fn scattered_rows_keep_bounds_and_a_direction() {
 
 #[test]
 fn surface_shapes_refuse_what_they_cannot_keep() {
-    let grid = [
-        "fit",
-        "-",
-        "--grid",
-        "16x12",
-        "--ctrl-grid",
-        "6x5",
-        "--degree",
-        "2",
-    ];
+    let grid = GRID_FIT;
     for (flags, message) in [
         (
             &["--min", "2", "--max", "1"][..],

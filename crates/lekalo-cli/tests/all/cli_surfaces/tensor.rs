@@ -222,19 +222,22 @@ fn bad_grids_exit_2_naming_the_option() {
         .stderr(contains("not finite"));
 }
 
+/// `eval` of `t` with `args` exits 2 with `needle` on stderr.
+fn eval_refused(t: &Path, args: &[&str], needle: &str) {
+    lekalo()
+        .arg("eval")
+        .arg(t)
+        .args(args)
+        .assert()
+        .code(2)
+        .stderr(contains(needle));
+}
+
 #[test]
 fn bad_points_and_files_exit_2() {
     let d = tempfile::tempdir().unwrap();
     let t = interpolated(d.path());
-    let eval = |args: &[&str], needle: &str| {
-        lekalo()
-            .arg("eval")
-            .arg(&t)
-            .args(args)
-            .assert()
-            .code(2)
-            .stderr(contains(needle));
-    };
+    let eval = |args: &[&str], needle: &str| eval_refused(&t, args, needle);
     eval(&["--at", "0.5,0.5"], "--at: 2 values");
     eval(&["--at", "0.5,0.5,2"], "tensor.json");
     eval(&[], "--at-file");
@@ -517,15 +520,7 @@ fn parquet_tables_in_and_out_and_eval_on_a_grid() {
 fn bad_parquet_tables_and_grids_exit_2() {
     let d = tempfile::tempdir().unwrap();
     let t = interpolated(d.path());
-    let eval = |args: &[&str], needle: &str| {
-        lekalo()
-            .arg("eval")
-            .arg(&t)
-            .args(args)
-            .assert()
-            .code(2)
-            .stderr(contains(needle));
-    };
+    let eval = |args: &[&str], needle: &str| eval_refused(&t, args, needle);
     eval(
         &["--grid", "3x3"],
         "--grid 3x3: 2 sizes for a spline in 3 parameters",
