@@ -107,7 +107,9 @@ pub use smoothing_condition::{
 pub use smoothing_on_knots::{smoothing_on_knots, smoothing_on_knots_with_progress};
 // the pieces of FITPACK's smoothing condition that the smoothing on tensor grids shares
 pub(crate) use progress::Steps;
-pub(crate) use smoothing_condition::{check_condition_args, jump_rows, next_nplus, smooth_weight};
+pub(crate) use smoothing_condition::{
+    accepts_least_squares, check_condition_args, jump_rows, next_nplus, smooth_weight,
+};
 pub use sphere::{
     sphere_grid_smoothing, sphere_least_squares, sphere_max_knots, sphere_smoothing, PoleCondition,
     SphereData, SphereFit, SphereGrid,

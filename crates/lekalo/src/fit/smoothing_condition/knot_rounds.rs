@@ -382,10 +382,10 @@ fn end_deficit(counts: impl Iterator<Item = usize>, e: usize) -> (usize, usize) 
 
 /// Whether a round's least-squares fit, whose residual is `s + fpms`, is the answer as it
 /// stands: its residual is within `acc = SMOOTHING_RTOL·s` of `s` on either side,
-/// `|fp − s| < acc` (FITPACK `fpcurf`, `fppara`, `fpperi`, `fpclos`: `abs(fpms).lt.acc`; SciPy's
-/// `generate_knots` alike). Such a fit may lie above `s`, by less than `acc`; with `s = 0`
-/// (`acc = 0`) none is.
-pub(in crate::fit) fn accepts_least_squares(fpms: f64, acc: f64) -> bool {
+/// `|fp − s| < acc` (FITPACK `fpcurf`, `fppara`, `fpperi`, `fpclos`, `fpregr`, `fpspgr`:
+/// `abs(fpms).lt.acc`; SciPy's `generate_knots` alike). Such a fit may lie above `s`, by less
+/// than `acc`; with `s = 0` (`acc = 0`) none is.
+pub(crate) fn accepts_least_squares(fpms: f64, acc: f64) -> bool {
     fpms.abs() < acc
 }
 

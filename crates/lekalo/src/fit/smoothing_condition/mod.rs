@@ -17,8 +17,8 @@ mod weight;
 
 use crate::Arg;
 use knot_rounds::knot_rounds;
-pub(crate) use knot_rounds::next_nplus;
-pub(in crate::fit) use knot_rounds::{accepts_least_squares, Added, Knots};
+pub(crate) use knot_rounds::{accepts_least_squares, next_nplus};
+pub(in crate::fit) use knot_rounds::{Added, Knots};
 pub(in crate::fit) use lsq_pass::{back_substitute, check_reachable, LsqPass, Observations};
 pub(in crate::fit) use weight::smooth_on;
 pub(crate) use weight::{jump_rows, smooth_weight};

@@ -20,7 +20,9 @@ use crate::basis::{basis_funs_into, BasisScratch};
 use crate::error::{Error, Result};
 use crate::fit::banded::{BandedQr, RANK_RTOL};
 use crate::fit::cyclic::CyclicQr;
-use crate::fit::{jump_rows, next_nplus, smooth_weight, Steps, SMOOTHING_RTOL};
+use crate::fit::{
+    accepts_least_squares, jump_rows, next_nplus, smooth_weight, Steps, SMOOTHING_RTOL,
+};
 use crate::knots::span_in;
 use crate::numeric::progress::Progress;
 use crate::tensor::rotate_full;
@@ -596,7 +598,7 @@ pub fn sphere_grid_smoothing(
         let fp = fit.fp;
         let fp0v = *fp0.get_or_insert(fp);
         let fpms = fp - s;
-        if fpms.abs() < acc {
+        if accepts_least_squares(fpms, acc) {
             return result(&sp, fit, None);
         }
         if fpms < 0.0 {
