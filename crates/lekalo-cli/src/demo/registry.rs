@@ -148,6 +148,12 @@ pub(crate) const ENTRIES: &[Entry] = &[
         build: fitting_shape::kinds,
     },
     Entry {
+        id: "fitting-shape-surfaces",
+        title: "Surfaces that keep their shape: a table rising in both variables, within bounds",
+        source: "docs/theory/fitting.md#shape-constraints-of-surfaces",
+        build: fitting_shape::surfaces,
+    },
+    Entry {
         id: "queries",
         title: "Geometric queries: intersections, closest points, offsets, curvature",
         source: "docs/theory/queries.md",
