@@ -204,6 +204,50 @@ def test_make_splrep_meets_s_where_fitpack_crowds_knots_at_an_end():
         lekalo.make_splrep(x, y, w=w, k=5, s=0.999 * floor)
 
 
+def test_fit_smoothing_condition_continues_from_the_rounds_of_a_report():
+    x, y = noisy(300)
+    c, rep = lekalo.fit_smoothing_condition(x, y, s=1.5, nest=150, resume=True)
+    r = rep["rounds"]
+    assert set(r) == {"knots", "fp0", "fp_before", "nplus", "restart", "nest", "resume"}
+    assert len(r["knots"]) > 0 and r["fp0"] > 1.5
+    assert np.array_equal(r["knots"], c.knots[4:-4]) and r["nest"] == 150 and r["resume"] is True
+    # continued with a smaller s: the earlier knots kept, more added, the condition met
+    c2, rep2 = lekalo.fit_smoothing_condition(x, y, s=0.8, start=r)
+    assert set(r["knots"]) <= set(c2.knots) and len(c2.knots) > len(c.knots)
+    assert rep2["weighted_rss"] <= 0.8 * (1 + 1e-3)
+    # lekalo.scipy's UnivariateSpline continues the same rounds (SciPy's set_smoothing_factor)
+    spl = lekalo.scipy.UnivariateSpline(x, y, s=1.5)
+    spl.set_smoothing_factor(0.8)
+    assert np.array_equal(spl.get_knots(), c2.knots[3:-3])
+    # the state carries its limit and knots; no rounds with t or shape constraints
+    with pytest.raises(lekalo.InputError, match="^nest: "):
+        lekalo.fit_smoothing_condition(x, y, s=0.8, start=r, nest=150)
+    with pytest.raises(lekalo.InputError, match="^start: "):
+        lekalo.fit_smoothing_condition(x, y, s=0.8, start=r, t=c.knots)
+    with pytest.raises(lekalo.InputError, match="^start: "):
+        lekalo.fit_smoothing_condition(x, y, s=0.8, start=r, increasing=True, k=3)
+    with pytest.raises(lekalo.InputError, match='^start: no "fp0"'):
+        lekalo.fit_smoothing_condition(x, y, s=0.8, start={k: v for k, v in r.items() if k != "fp0"})
+    moved = dict(r, knots=r["knots"] + 1e-3)
+    with pytest.raises(ValueError, match="not a data parameter"):
+        lekalo.fit_smoothing_condition(x, y, s=0.8, start=moved)
+    assert "rounds" not in lekalo.fit_smoothing_condition(x, y, s=0.8, t=c.knots)[1]
+
+
+def test_make_splprep_domain_puts_the_end_knots():
+    th = np.linspace(0, 1.5 * np.pi, 60)
+    pts = np.column_stack([np.cos(th), np.sin(th)]) + 0.01 * RNG.standard_normal((60, 2))
+    u = np.linspace(0.0, 1.0, 60)
+    c, uu = lekalo.make_splprep(pts, u=u, s=0.05, domain=(-0.2, 1.3))
+    assert np.array_equal(uu, u)
+    assert np.all(c.knots[:4] == -0.2) and np.all(c.knots[-4:] == 1.3)
+    assert ((c(u) - pts) ** 2).sum() <= 0.05 * (1 + 1e-3)
+    with pytest.raises(lekalo.InputError, match="^domain: "):
+        lekalo.make_splprep(pts, u=u, s=0.05, domain=(0.1, 1.3))
+    with pytest.raises(lekalo.InputError, match="^domain: "):
+        lekalo.make_splprep(pts, u=u, s=0.05, domain=(-0.2, 1.3), t=[0.0] * 4 + [1.0] * 4)
+
+
 def test_make_splprep_parametric():
     th = np.linspace(0, 1.5 * np.pi, 120)
     pts = np.column_stack([np.cos(th), np.sin(th)]) + 0.01 * RNG.standard_normal((120, 2))

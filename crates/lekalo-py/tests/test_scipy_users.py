@@ -950,11 +950,6 @@ def test_splprep_ub_ue():
     same(inside)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="needs Rust (not in differences.toml): splprep with u, s > 0 and ub < u[0] or ue > u[-1] "
-    "needs FITPACK parcur's knot rounds with the end knots at ub/ue; lekalo.scipy raises NotImplementedError",
-)
 def test_splprep_ub_ue_smoothing():
     """splprep(..., u=u, ub=..., ue=..., s>0): a smoothed curve on a parameter interval wider than u."""
 
@@ -963,6 +958,28 @@ def test_splprep_ub_ue_smoothing():
         return si.splprep([x, y], u=np.linspace(0, 1, 20), ub=-0.1, ue=1.1, s=0.5)
 
     same(snippet, rtol=1e-3, scale=10.0)
+
+
+def test_splrep_splprep_task_1():
+    """splrep(..., task=1) and splprep(..., task=1) after a first fit, as their docstrings describe: SciPy 1.17 raises UnboundLocalError (its cache is a local name), with knots t too."""
+
+    def splrep_task1(si):
+        x, y = noisy(30, seed=16)
+        si.splrep(x, y, s=1.0)
+        return si.splrep(x, y, s=0.5, task=1)
+
+    def splprep_task1(si):
+        x, y = noisy(30, seed=16)
+        si.splprep([x, y], s=1.0)
+        return si.splprep([x, y], s=0.5, task=1)
+
+    def splrep_task1_knots(si):
+        x, y = noisy(30, seed=16)
+        return si.splrep(x, y, t=[3.0, 5.0, 7.0], task=1)
+
+    same(splrep_task1)
+    same(splprep_task1)
+    same(splrep_task1_knots, scale=2.0)
 
 
 def test_splprep_full_output():
@@ -1663,11 +1680,6 @@ def test_splprep_closed_curve_given_angles():
     same(snippet, scale=2.0)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="needs Rust (not in differences.toml): splprep with u, per=1 and s > 0 (FITPACK's clocur "
-    "smoothing on given parameters); lekalo.scipy raises NotImplementedError",
-)
 def test_splprep_closed_curve_given_angles_smoothed():
     """splprep([x, y], u=theta, s=..., per=1) of a noisy closed outline."""
 
@@ -1680,12 +1692,6 @@ def test_splprep_closed_curve_given_angles_smoothed():
     same(snippet, rtol=1e-3)  # smoothing condition: within 0.001*s (module docstring)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="documented in docs/scipy.md, not in differences.toml: UnivariateSpline.set_smoothing_factor "
-    "with s below the least-squares residual on the current knots (FITPACK adds knots to them) raises "
-    "NotImplementedError in lekalo.scipy",
-)
 def test_univariatespline_set_smoothing_factor_smaller():
     """UnivariateSpline(x, y, s=1.0) then spl.set_smoothing_factor(0.2) to follow the data more closely."""
 
@@ -1696,6 +1702,23 @@ def test_univariatespline_set_smoothing_factor_smaller():
         return spl(XS), spl.get_knots()
 
     same(snippet, rtol=1e-3)  # smoothing condition: within 0.001*s (module docstring)
+
+
+def test_univariatespline_set_smoothing_factor_goes_on_from_the_knots():
+    """UnivariateSpline(x, y, s=20) then set_smoothing_factor(1.0), and on to 0.1: FITPACK adds knots to the coarse fit's, other knots than a fresh UnivariateSpline(x, y, s=1.0) takes."""
+
+    def snippet(si):
+        x = np.arange(200) / 20.0
+        y = np.sin(x) * np.cos(0.3 * x * x) + 0.05 * np.random.default_rng(31).standard_normal(200)
+        spl = si.UnivariateSpline(x, y, s=20.0)
+        # copies: SciPy's get_knots is a view of the array that set_smoothing_factor refills
+        out = [spl.get_knots().copy()]
+        for s in (1.0, 0.1, 0.5):
+            spl.set_smoothing_factor(s)
+            out += [spl.get_knots().copy(), spl(XS)]
+        return out
+
+    same(snippet, rtol=1e-3, scale=2.0)  # smoothing condition: within 0.001*s (module docstring)
 
 
 def test_interp2d_bug_for_bug_bisplrep():

@@ -654,6 +654,7 @@ def make_splprep(
     t: Optional[ArrayLike] = None,
     parametrization: Optional[Param] = None,
     knot_rounds: Optional[str] = None,
+    domain: Optional[Tuple[float, float]] = None,
 ) -> Tuple[BSplineCurve, Array]: ...
 def generate_knots(
     x: ArrayLike,
@@ -716,6 +717,7 @@ def fit_smoothing_condition(
     knot_rounds: Optional[str] = None,
     nest: Optional[int] = None,
     resume: bool = False,
+    start: Optional[dict] = None,
     increasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     decreasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     convex: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,

@@ -4,9 +4,9 @@
 
 use lekalo::fit::{
     constrained_smoothing_condition, constrained_smoothing_spline, gcv_score as lk_gcv,
-    periodic_smoothing_knot_sequence, smoothing_condition_with_limit,
-    smoothing_condition_with_rounds, smoothing_knot_sequence, smoothing_on_knots, smoothing_spline,
-    CurveFit, FitData, KnotLimit, KnotRounds, Lambda, ShapeConstraints,
+    periodic_smoothing_knot_sequence, smoothing_condition_from, smoothing_condition_with_rounds,
+    smoothing_knot_sequence, smoothing_on_knots, smoothing_spline, CurveFit, FitData, KnotLimit,
+    KnotRounds, Lambda, RoundsStart, RoundsState, ShapeConstraints,
 };
 use lekalo::Progress;
 use pyo3::prelude::*;
@@ -189,21 +189,25 @@ pub(crate) fn make_splrep<'py>(
         increasing, decreasing, convex, concave, min, max, through, slope_at, integral, periodic,
     ])?;
     let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
-    let limit = knot_limit(nest, resume)?;
-    let f = shaped_condition_fit(py, &data, (k, s, t, domain, knot_rounds, limit), &shape)?;
+    let start = RoundsStart::Fresh(knot_limit(nest, resume)?);
+    let (f, _) = shaped_condition_fit(py, &data, (k, s, t, domain, knot_rounds, start), &shape)?;
     Ok(PyBSplineCurve::wrap(f.curve))
 }
 
-/// The smoothing condition's own arguments: `k`, `s`, `t`, `domain`, `knot_rounds` and the
-/// limit of `nest` and `resume`.
-type ConditionArgs<'a, 'py> = (
+/// The smoothing condition's own arguments: `k`, `s`, `t`, `domain`, `knot_rounds` and where
+/// the rounds start (fresh under the limit of `nest` and `resume`, or from `start`).
+type ConditionArgs<'a, 'py, 's> = (
     usize,
     f64,
     Option<&'a Bound<'py, PyAny>>,
     Option<(f64, f64)>,
     Option<&'a str>,
-    KnotLimit,
+    RoundsStart<'s>,
 );
+
+/// A fit of the smoothing condition, with the state of its knot rounds when they ran (not with
+/// knots `t` or shape constraints).
+type ConditionFit = (CurveFit, Option<RoundsState>);
 
 /// `nest=`, `resume=`: the knots the rounds may place (FITPACK's `nest`) and whether they go on
 /// from there ([`KnotLimit`]); `resume` without `nest` is refused.
@@ -225,18 +229,27 @@ fn knot_limit(nest: Option<IntArg>, resume: bool) -> PyResult<KnotLimit> {
 fn shaped_condition_fit(
     py: Python<'_>,
     data: &Data<'_>,
-    (k, s, t, domain, knot_rounds, limit): ConditionArgs<'_, '_>,
+    (k, s, t, domain, knot_rounds, start): ConditionArgs<'_, '_, '_>,
     shape: &ShapeConstraints,
-) -> PyResult<CurveFit> {
+) -> PyResult<ConditionFit> {
     let rounds = self::knot_rounds(knot_rounds)?;
     if shape.is_empty() {
-        return condition_fit(py, data, (k, s, t, domain, rounds, limit));
+        return condition_fit(py, data, (k, s, t, domain, rounds, start));
     }
-    if limit != KnotLimit::Unlimited {
-        return Err(bad(
-            "nest: with shape constraints the smoothing condition fits the cubic smoothing spline (knots at the data); drop nest"
-                .into(),
-        ));
+    match start {
+        RoundsStart::Fresh(KnotLimit::Unlimited) => {}
+        RoundsStart::Fresh(_) => {
+            return Err(bad(
+                "nest: with shape constraints the smoothing condition fits the cubic smoothing spline (knots at the data); drop nest"
+                    .into(),
+            ))
+        }
+        RoundsStart::Continue(_) => {
+            return Err(bad(
+                "start: with shape constraints the smoothing condition fits the cubic smoothing spline (knots at the data, no knot rounds); drop start"
+                    .into(),
+            ))
+        }
     }
     if knot_rounds.is_some() {
         return Err(bad(
@@ -257,25 +270,27 @@ fn shaped_condition_fit(
         ));
     }
     let fd = data.fit_data("x")?;
-    py.detach(|| constrained_smoothing_condition(&fd, s, shape))
-        .map_err(lib_err)
+    let f = py
+        .detach(|| constrained_smoothing_condition(&fd, s, shape))
+        .map_err(lib_err)?;
+    Ok((f, None))
 }
 
 /// The smoothing condition on FITPACK's knots placed in `rounds` (end knots at `domain` when
-/// given) or, with `t`, the smoothing on those knots.
+/// given), started as `start` says, or, with `t`, the smoothing on those knots.
 #[allow(clippy::type_complexity)]
 fn condition_fit(
     py: Python<'_>,
     data: &Data<'_>,
-    (k, s, t, domain, rounds, limit): (
+    (k, s, t, domain, rounds, start): (
         usize,
         f64,
         Option<&Bound<'_, PyAny>>,
         Option<(f64, f64)>,
         KnotRounds,
-        KnotLimit,
+        RoundsStart<'_>,
     ),
-) -> PyResult<CurveFit> {
+) -> PyResult<ConditionFit> {
     let fd = data.fit_data("x")?;
     let kv = t.map(knot_vector).transpose()?;
     if kv.is_some() && domain.is_some() {
@@ -283,16 +298,25 @@ fn condition_fit(
             "domain: the knots t set the domain (their end knots); drop domain or t".into(),
         ));
     }
-    if kv.is_some() && limit != KnotLimit::Unlimited {
-        return Err(bad(
-            "nest: the knots t are given, no rounds place them; drop nest or t".into(),
-        ));
+    match (&kv, start) {
+        (Some(_), RoundsStart::Fresh(KnotLimit::Unlimited)) | (None, _) => {}
+        (Some(_), RoundsStart::Fresh(_)) => {
+            return Err(bad(
+                "nest: the knots t are given, no rounds place them; drop nest or t".into(),
+            ))
+        }
+        (Some(_), RoundsStart::Continue(_)) => {
+            return Err(bad(
+                "start: the knots t are given, no rounds place them; drop start or t".into(),
+            ))
+        }
     }
     py.detach(|| match &kv {
-        Some(kv) => smoothing_on_knots(&fd, k, kv, s),
+        Some(kv) => smoothing_on_knots(&fd, k, kv, s).map(|f| (f, None)),
         None => {
             let quiet = Progress::new();
-            smoothing_condition_with_limit(&fd, k, s, domain, rounds, limit, &quiet)
+            smoothing_condition_from(&fd, k, s, domain, rounds, start, &quiet)
+                .map(|(f, st)| (f, Some(st)))
         }
     })
     .map_err(|e| match e {
@@ -305,13 +329,70 @@ fn condition_fit(
     })
 }
 
+/// The state of the knot rounds as the report's `"rounds"` dict: `knots` (the interior knots
+/// of the last pass), `fp0`, `fp_before`, `nplus`, `restart`, and the limit a continuation runs
+/// under, `nest` (`None` for none) and `resume` ([`RoundsState`]).
+fn rounds_dict<'py>(py: Python<'py>, st: &RoundsState) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("knots", vec_array(py, &st.interior))?;
+    d.set_item("fp0", st.fp0)?;
+    d.set_item("fp_before", st.fp_before)?;
+    d.set_item("nplus", st.nplus)?;
+    d.set_item("restart", st.restart)?;
+    let (nest, resume) = match st.limit {
+        KnotLimit::Unlimited => (None, false),
+        KnotLimit::Stop(n) => (Some(n), false),
+        KnotLimit::Resume(n) => (Some(n), true),
+    };
+    d.set_item("nest", nest)?;
+    d.set_item("resume", resume)?;
+    Ok(d)
+}
+
+/// `start=`: a report's `"rounds"` dict ([`rounds_dict`]) read back, every key required.
+fn rounds_state(d: &Bound<'_, PyAny>) -> PyResult<RoundsState> {
+    let get = |key: &str| -> PyResult<Bound<'_, PyAny>> {
+        d.get_item(key).map_err(|_| {
+            bad(format!(
+                "start: no {key:?}; give the report[\"rounds\"] of an earlier \
+                 fit_smoothing_condition on the same data"
+            ))
+        })
+    };
+    let nest: Option<IntArg> = get("nest")?.extract()?;
+    let resume: bool = get("resume")?.extract()?;
+    Ok(RoundsState {
+        interior: vec1(&get("knots")?, "start[\"knots\"]")?,
+        fp0: get("fp0")?.extract()?,
+        fp_before: get("fp_before")?.extract()?,
+        nplus: get("nplus")?
+            .extract::<IntArg>()?
+            .count("start[\"nplus\"]")?,
+        restart: get("restart")?.extract()?,
+        limit: knot_limit(nest, resume)?,
+    })
+}
+
 /// As `make_splrep`, returning `(curve, report)`, with the library's weights: the condition is
 /// `Σ w_k |y_k − f(x_k)|² ≤ s` (`make_splrep` squares SciPy's `w` into these). With shape
 /// constraints (keywords as `fit_smoothing`), the constrained cubic smoothing spline whose
 /// residual is `s` (its λ, found by bisection, in `report["lam"]`; no `t`, `k = 3`).
 /// `domain=(a, b)` as in `make_splrep`: the end knots, reaching beyond the data.
+/// When FITPACK's knot rounds ran (no `t`, no shape constraints), `report["rounds"]` is where
+/// they ended (`knots`, `fp0`, `fp_before`, `nplus`, `restart`, `nest`, `resume`); `start=` that
+/// dict goes on from there with another `s` on the same data, as FITPACK's `curfit` with
+/// `iopt=1` (SciPy's `UnivariateSpline.set_smoothing_factor`): the rounds resume from its
+/// knots under its limit (no `nest` then), or start over when `s` is at least the residual of
+/// the least-squares polynomial (`docs/theory/fitting.md#smoothing-condition`).
+///
+/// >>> import numpy as np, lekalo
+/// >>> x = np.linspace(0, 10, 60); y = np.sin(x) + 0.1 * np.cos(37 * x)
+/// >>> c, r = lekalo.fit_smoothing_condition(x, y, s=1.0)
+/// >>> c2, r2 = lekalo.fit_smoothing_condition(x, y, s=0.2, start=r["rounds"])
+/// >>> bool(r2["weighted_rss"] <= 0.2 * 1.001 and len(c2.knots) > len(c.knots))
+/// True
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None, knot_rounds = None, nest = None, resume = false, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None, integral = None, periodic = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None, knot_rounds=None, nest=None, resume=False, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None, integral=None, periodic=None)")]
+#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None, knot_rounds = None, nest = None, resume = false, start = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None, integral = None, periodic = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None, knot_rounds=None, nest=None, resume=False, start=None, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None, integral=None, periodic=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_smoothing_condition<'py>(
     py: Python<'py>,
@@ -325,6 +406,7 @@ pub(crate) fn fit_smoothing_condition<'py>(
     knot_rounds: Option<&str>,
     nest: Option<IntArg>,
     resume: bool,
+    start: Option<&Bound<'py, PyAny>>,
     increasing: Option<&Bound<'py, PyAny>>,
     decreasing: Option<&Bound<'py, PyAny>>,
     convex: Option<&Bound<'py, PyAny>>,
@@ -342,8 +424,24 @@ pub(crate) fn fit_smoothing_condition<'py>(
     ])?;
     let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
     let limit = knot_limit(nest, resume)?;
-    let f = shaped_condition_fit(py, &data, (k, s, t, domain, knot_rounds, limit), &shape)?;
-    with_report(py, f)
+    let state = start.map(rounds_state).transpose()?;
+    let start = match &state {
+        None => RoundsStart::Fresh(limit),
+        Some(_) if limit != KnotLimit::Unlimited => {
+            return Err(bad(
+                "nest: the rounds continued from start run under the limit it carries; drop nest and resume"
+                    .into(),
+            ))
+        }
+        Some(st) => RoundsStart::Continue(st),
+    };
+    let (f, rounds) =
+        shaped_condition_fit(py, &data, (k, s, t, domain, knot_rounds, start), &shape)?;
+    let (curve, report) = with_report(py, f)?;
+    if let Some(st) = rounds {
+        report.set_item("rounds", rounds_dict(py, &st)?)?;
+    }
+    Ok((curve, report))
 }
 
 /// The successive knot vectors of the smoothing condition's rounds (SciPy's `generate_knots`,
@@ -403,9 +501,10 @@ pub(crate) fn generate_knots<'py>(
 /// (SciPy's `make_splprep`, points as rows instead of SciPy's list of coordinate arrays).
 /// Parameters `u` default to chord length on `[0, 1]` (`parametrization` chooses another);
 /// weights as SciPy's (`Σ (w_k |r_k|)² ≤ s`); `knot_rounds` as in `make_splrep`.
-/// Returns `(curve, u)`.
+/// `domain=(a, b)`, holding the parameters, puts the end knots at `a` and `b` (FITPACK
+/// `parcur`'s `ub`, `ue`; without `t`), as `make_splrep`'s `domain`. Returns `(curve, u)`.
 #[pyfunction]
-#[pyo3(signature = (points, *, w = None, u = None, k = IntArg::of(3), s = 0.0, t = None, parametrization = None, knot_rounds = None), text_signature = "(points, *, w=None, u=None, k=3, s=0.0, t=None, parametrization=None, knot_rounds=None)")]
+#[pyo3(signature = (points, *, w = None, u = None, k = IntArg::of(3), s = 0.0, t = None, parametrization = None, knot_rounds = None, domain = None), text_signature = "(points, *, w=None, u=None, k=3, s=0.0, t=None, parametrization=None, knot_rounds=None, domain=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn make_splprep<'py>(
     py: Python<'py>,
@@ -417,6 +516,7 @@ pub(crate) fn make_splprep<'py>(
     t: Option<&Bound<'py, PyAny>>,
     parametrization: Option<&Bound<'py, PyAny>>,
     knot_rounds: Option<&str>,
+    domain: Option<(f64, f64)>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyAny>)> {
     let k = k.count("k")?;
     let rounds = self::knot_rounds(knot_rounds)?;
@@ -435,11 +535,23 @@ pub(crate) fn make_splprep<'py>(
         fd = fd.with_weights(wv).map_err(lib_err)?;
     }
     let kv = t.map(knot_vector).transpose()?;
+    if kv.is_some() && domain.is_some() {
+        return Err(bad(
+            "domain: the knots t set the domain (their end knots); drop domain or t".into(),
+        ));
+    }
     let f = py
         .detach(|| match &kv {
             Some(kv) => smoothing_on_knots(&fd, k, kv, s),
-            None => smoothing_condition_with_rounds(&fd, k, s, None, rounds, &Progress::new()),
+            None => smoothing_condition_with_rounds(&fd, k, s, domain, rounds, &Progress::new()),
         })
-        .map_err(lib_err)?;
+        .map_err(|e| match e {
+            lekalo::Error::ParameterOutOfDomain { .. } | lekalo::Error::EmptyDomain { .. }
+                if domain.is_some() =>
+            {
+                named("domain", &e)
+            }
+            other => lib_err(other),
+        })?;
     Ok((PyBSplineCurve::wrap(f.curve), vec_array(py, &params)))
 }

@@ -11,7 +11,7 @@
 //! | `knot_placement.rs` | [`place_knots`] (P&T eq. 9.68–9.69), [`check_schoenberg_whitney`] | [#knot-placement] |
 //! | `lsq.rs` | [`least_squares`] (the curve alone: [`least_squares_curve`]; with FITPACK's `fp`: [`least_squares_curve_rss`]): weighted least squares with given knots, end points and end derivatives eliminated exactly (P&T A9.6/A9.7) | [#least-squares], [#constraints] |
 //! | `smoothing.rs` | [`smoothing_spline`]: `Σ w (y − f)² + λ ∫ f''²`, λ given or by GCV | [#penalised], [#gcv] |
-//! | `smoothing_condition/` | [`smoothing_condition`]: fewest knots with weighted RSS ≤ s (FITPACK `curfit`/`parcur` style), [`smoothing_condition_in`] on a domain wider than the data; [`smoothing_knot_sequence`]: its knot vectors round by round; [`KnotRounds`]: FITPACK's rounds or SciPy's `generate_knots` | [#smoothing-condition] |
+//! | `smoothing_condition/` | [`smoothing_condition`]: fewest knots with weighted RSS ≤ s (FITPACK `curfit`/`parcur` style), [`smoothing_condition_in`] on a domain wider than the data; [`smoothing_knot_sequence`]: its knot vectors round by round; [`KnotRounds`]: FITPACK's rounds or SciPy's `generate_knots`; [`smoothing_condition_from`]: the rounds continued from an earlier call's [`RoundsState`] (FITPACK's `iopt = 1`) | [#smoothing-condition] |
 //! | `smoothing_on_knots.rs` | [`smoothing_on_knots`]: least jumps of the `k`-th derivative on given knots with weighted RSS = s | [#smoothing-on-given-knots] |
 //! | `tolerance/` | [`fit_tolerance`]: within `tol` of every point with few control points (knot insertion and removal, deviations by projection) | [#tolerance] |
 //! | `periodic.rs` | [`periodic_least_squares`], [`periodic_smoothing_condition`], [`periodic_smoothing_knot_sequence`], [`periodic_smoothing_on_knots`]: closed fits (FITPACK `fpperi`) | [#periodic] |
@@ -99,10 +99,10 @@ pub(crate) use smoothing::{
 };
 pub use smoothing::{gcv_score, smoothing_spline, smoothing_spline_with_progress, Lambda};
 pub use smoothing_condition::{
-    smoothing_condition, smoothing_condition_in, smoothing_condition_in_with_progress,
-    smoothing_condition_with_limit, smoothing_condition_with_progress,
-    smoothing_condition_with_rounds, smoothing_knot_sequence, KnotLimit, KnotRounds,
-    SMOOTHING_RTOL,
+    smoothing_condition, smoothing_condition_from, smoothing_condition_in,
+    smoothing_condition_in_with_progress, smoothing_condition_with_limit,
+    smoothing_condition_with_progress, smoothing_condition_with_rounds, smoothing_knot_sequence,
+    KnotLimit, KnotRounds, RoundsStart, RoundsState, SMOOTHING_RTOL,
 };
 pub use smoothing_on_knots::{smoothing_on_knots, smoothing_on_knots_with_progress};
 // the pieces of FITPACK's smoothing condition that the smoothing on tensor grids shares

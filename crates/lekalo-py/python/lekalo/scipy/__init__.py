@@ -25,10 +25,10 @@ solutions of rank-deficient systems), ``bisplrep`` (``task`` 0 and -1), ``bisple
 ``PPoly`` and ``BPoly`` (evaluation, ``derivative``, ``antiderivative``, ``integrate``, ``roots``/``solve``,
 ``extend``, ``from_spline``, ``from_bernstein_basis``, ``from_power_basis``) and, in
 SciPy's ``PPoly`` form, ``CubicSpline``, ``CubicHermiteSpline``, ``PchipInterpolator``
-(``pchip``, ``pchip_interpolate``), ``Akima1DInterpolator``. Not yet: ``task=1`` (continuing an earlier fit from its knots) in
-``splrep``, ``splprep`` and ``bisplrep``, and ``splprep``'s smoothing (``s > 0``) with given
-parameters ``u`` that are periodic or reach beyond ``ub``/``ue``; ``docs/scipy.md`` lists what
-SciPy's own tests find missing. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
+(``pchip``, ``pchip_interpolate``), ``Akima1DInterpolator``. ``UnivariateSpline.set_smoothing_factor``
+continues FITPACK's knot rounds from the last fit (``curfit``'s ``iopt=1``); ``splrep`` and
+``splprep`` with ``task=1`` raise SciPy 1.17's ``UnboundLocalError``. Not yet: ``task=1`` of
+``bisplrep``; ``docs/scipy.md`` lists what SciPy's own tests find missing. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
 extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
 """
 

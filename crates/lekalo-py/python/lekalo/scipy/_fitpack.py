@@ -81,19 +81,32 @@ def splrep(
 ):
     """``scipy.interpolate.splrep`` for interpolation (``s = 0``, the default without weights;
     FITPACK's knots are SciPy's not-a-knot ones), the smoothing condition (lekalo's
-    ``make_splrep``) and least squares on given interior knots ``t`` (``task=-1``), with the end
-    knots at ``xb`` and ``xe``; ``per=1`` ignores ``xb``/``xe`` as FITPACK's ``percur`` does.
-    Returns ``(t, c, k)`` with ``c`` zero-padded to ``len(t)``, as FITPACK."""
+    ``fit_smoothing_condition``, ``make_splrep``'s fit) and least squares on given interior knots
+    ``t`` (``task=-1``), with the end knots at ``xb`` and ``xe``; ``per=1`` ignores ``xb``/``xe``
+    as FITPACK's ``percur`` does. ``task=1`` raises SciPy 1.17's ``UnboundLocalError``. Returns
+    ``(t, c, k)`` with ``c`` zero-padded to ``len(t)``, as FITPACK."""
     return _splrep(x, y, w, xb, xe, k, task, s, t, full_output, per, quiet)
 
 
 def _splrep(
     x: Any, y: Any, w: Any, xb: Any, xe: Any, k: int, task: int, s: Any, t: Any, full_output: int, per: int,
-    quiet: int, nest: Any = None,
+    quiet: int,
 ):
-    """``splrep``; with ``nest`` (``s > 0``, no ``t``, ``per=0``) the rounds of the smoothing
-    condition stop at ``nest`` knots and go on from the knots reached, as SciPy's
-    ``UnivariateSpline`` calls FITPACK's ``curfit`` (lekalo's ``resume``)."""
+    """``splrep``'s result: ``(t, c, k)``, with ``fp``, ``ier`` and the message for
+    ``full_output``."""
+    return _splrep_rounds(x, y, w, xb, xe, k, task, s, t, full_output, per, quiet)[0]
+
+
+def _splrep_rounds(
+    x: Any, y: Any, w: Any, xb: Any, xe: Any, k: int, task: int, s: Any, t: Any, full_output: int, per: int,
+    quiet: int, nest: Any = None, start: Any = None,
+):
+    """``splrep`` and the state of FITPACK's knot rounds (the report's ``"rounds"`` of lekalo's
+    ``fit_smoothing_condition``) where they ran, else ``None``. With ``nest`` (``s > 0``, no
+    ``t``, ``per=0``) the rounds stop at ``nest`` knots and go on from the knots reached, as
+    SciPy's ``UnivariateSpline`` calls FITPACK's ``curfit`` (lekalo's ``resume``); with
+    ``start`` (a state) they go on from an earlier fit's knots under the limit it carries, as
+    ``curfit`` with ``iopt=1``."""
     x = np.atleast_1d(np.asarray(x, dtype=np.float64))
     y = np.atleast_1d(np.asarray(y, dtype=np.float64))
     m = len(x)
@@ -108,22 +121,30 @@ def _splrep(
         raise TypeError(f"1 <= k= {k} <=5 must hold")
     if task not in (-1, 0, 1):
         raise TypeError("task must be -1, 0 or 1")
-    if task == 1:
-        raise NotImplementedError("lekalo.scipy.splrep: task=1 (continuing an earlier fit) is not available yet")
     if task == -1 and t is None:
         raise TypeError("Knots must be given for task=-1")
     # FITPACK's periodic fit (percur) takes its period from the data and ignores xb/xe
     xb = x[0] if xb is None or per else float(xb)
     xe = x[-1] if xe is None or per else float(xe)
-    if m and (xb > x[0] or xe < x[-1]):
-        raise ValueError("Error on input data: xb <= x[0] and xe >= x[-1] must hold")
-    wide = m > 0 and (xb != x[0] or xe != x[-1])
     if y.ndim != 1:
         raise ValueError(f"too many axes: {y.ndim} (effrank={y.ndim}), expected rank=1")
     if len(y) != m:
         raise TypeError("Lengths of the first three arguments (x,y,w) must be equal")
     if m <= k:
         raise TypeError("m > k must hold")
+    if task == 1:
+        # SciPy's splrep keeps the previous call's knots in a name that its own task <= 0
+        # branch makes local, so task=1 fails before reaching FITPACK, with knots t too
+        # (SciPy 1.17)
+        raise UnboundLocalError(
+            "cannot access local variable '_curfit_cache' where it is not associated with a value "
+            "(SciPy's splrep(task=1) raises this: it keeps no earlier fit to continue; "
+            "UnivariateSpline(x, y, s=s0).set_smoothing_factor(s) continues FITPACK's knot rounds)"
+        )
+    if m and (xb > x[0] or xe < x[-1]):
+        raise ValueError("Error on input data: xb <= x[0] and xe >= x[-1] must hold")
+    wide = m > 0 and (xb != x[0] or xe != x[-1])
+    rounds = None
     if per:
         # lekalo's periodic fit is splrep(per=1)'s: the last point closes the period, FITPACK's
         # knots and smoothing condition, or least squares on the interior knots t
@@ -145,12 +166,16 @@ def _splrep(
         # before it; k = 1 keeps the data as they are, so NumPy checks them
         spl = make_interp_spline(x, y, k=k, check_finite=k <= 1)
     else:
-        # FITPACK's knot placement and smoothing condition, lekalo's make_splrep: the same
-        # knots; the coefficients meet FITPACK's tolerance |fp - s| <= 0.001 s, not its bits;
-        # the end knots at xb and xe
-        curve = _lekalo.make_splrep(
-            x, y, w=w, k=k, s=float(s), domain=(xb, xe) if wide else None, nest=nest, resume=nest is not None
+        # FITPACK's knot placement and smoothing condition, lekalo's fit_smoothing_condition:
+        # the same knots; the coefficients meet FITPACK's tolerance |fp - s| <= 0.001 s, not its
+        # bits; the end knots at xb and xe; the rounds' state kept for a continuation
+        # SciPy's weights squared into lekalo's; negative ones passed on for lekalo to refuse
+        ws = None if w is None else np.where(w >= 0, w * w, w)
+        curve, report = _lekalo.fit_smoothing_condition(
+            x, y, w=ws, k=k, s=float(s), domain=(xb, xe) if wide else None,
+            nest=nest, resume=nest is not None, start=start,
         )
+        rounds = report["rounds"]
         spl = BSpline.construct_fast(np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control[:, 0]), k)
     tck = (spl.t, _pad_rows(spl.c, spl.t.shape[0]), spl.k)
     if full_output:
@@ -158,13 +183,13 @@ def _splrep(
         # interpolating spline (fp = 0 as FITPACK reports it), -2 where the smoothing condition
         # kept the least-squares polynomial (no interior knot), 0 otherwise
         if s == 0 and t is None:
-            return tck, 0.0, -1, _CURFIT_MESSAGES[-1]
+            return (tck, 0.0, -1, _CURFIT_MESSAGES[-1]), rounds
         rows = slice(None, -1) if per else slice(None)
         ww = 1.0 if w is None else w[rows]
         fp = float(np.sum((ww * (spl(x[rows]) - y[rows])) ** 2))
         ier = -2 if t is None and not per and spl.t.shape[0] == 2 * k + 2 else 0
-        return tck, fp, ier, _CURFIT_MESSAGES[ier]
-    return tck
+        return (tck, fp, ier, _CURFIT_MESSAGES[ier]), rounds
+    return tck, rounds
 
 
 # FITPACK's curfit messages as SciPy's splrep words them
@@ -421,16 +446,25 @@ def splprep(
     (``per=1``) through or near the points ``x`` (``(dim, m)``), lekalo's ``make_splprep`` and
     ``fit_closed`` on FITPACK's knots; with knots ``t`` (``task=-1``) lekalo's ``make_lsq_spline``
     on their interior knots, the end knots at ``ub`` and ``ue``. ``ub``/``ue`` are read with ``u``
-    only, as FITPACK reads them; beyond the ends of ``u`` they take the end knots of the
-    interpolating curve (``s = 0``), and are not available with ``s > 0``. With ``u`` and
-    ``per=1``: the closed interpolating curve for ``s = 0``, not available for ``s > 0``. Returns
-    ``([t, [c_0, …], k], u)`` (with ``fp``, ``ier``, ``msg`` for ``full_output``)."""
+    only, as FITPACK reads them; beyond the ends of ``u`` they are the end knots of the
+    interpolating curve (``s = 0``) and of the smoothing condition (``make_splprep``'s
+    ``domain``). With ``u`` and ``per=1``: the closed interpolating curve for ``s = 0``, and
+    lekalo's ``fit_periodic`` on the period ``[u[0], u[-1]]`` for ``s > 0`` (FITPACK's
+    ``clocur``). ``task=1`` raises SciPy's ``UnboundLocalError``. Returns ``([t, [c_0, …], k],
+    u)`` (with ``fp``, ``ier``, ``msg`` for ``full_output``)."""
     x = np.array(np.atleast_1d(x), dtype=np.float64)
     idim, m = x.shape
     if per:
         x[:, -1] = x[:, 0]
     if not 0 < idim < 11:
         raise TypeError("0 < idim < 11 must hold")
+    if task > 0:
+        # SciPy's splprep keeps the previous call's state in a name that its own task <= 0
+        # branch makes local, so task=1 fails at its first use (SciPy 1.17)
+        raise UnboundLocalError(
+            "cannot access local variable '_parcur_cache' where it is not associated with a value "
+            "(SciPy's splprep(task=1) raises this: it keeps no earlier fit to continue)"
+        )
     w = np.ones(m) if w is None else np.atleast_1d(np.asarray(w, dtype=np.float64))
     if not (1 <= k <= 5):
         raise TypeError(f"1 <= k= {k} <=5 must hold")
@@ -444,8 +478,8 @@ def splprep(
         raise TypeError("Knots must be given for task=-1")
     if m <= k:
         raise TypeError("m > k must hold")
-    if task == 1 or (per and (t is not None or task == -1)):
-        raise NotImplementedError("lekalo.scipy.splprep: task=1, and t with per=1, are not available yet")
+    if per and (t is not None or task == -1):
+        raise NotImplementedError("lekalo.scipy.splprep: t with per=1 is not available yet")
     if u is None or per:
         # FITPACK reads ub/ue only with given parameters u: parcur computes u itself on [0, 1]
         # (ub = 0, ue = 1) and clocur takes no interval, so SciPy ignores them here
@@ -467,8 +501,6 @@ def splprep(
             j = k // 2 + 1
             inner = uu0[j : m - k - 1 + j] if k % 2 else 0.5 * (uu0[j : m - k - 1 + j] + uu0[j - 1 : m - k - 2 + j])
             t = np.r_[(ub,) * (k + 1), inner, (ue,) * (k + 1)]
-        elif t is None:
-            raise NotImplementedError("lekalo.scipy.splprep: ub/ue beyond the ends of u with s > 0 are not available yet")
     pts = np.ascontiguousarray(x.T)
     if u is None and np.any(np.all(pts[1:] == pts[:-1], axis=1)):
         # two consecutive points coincide: the chord-length parameters do not increase
@@ -497,12 +529,18 @@ def splprep(
             period = uu[-1] - uu[0]
             knots = np.r_[uu[-k - 1 : -1] - period, uu, uu[1 : k + 1] + period]
         curve = _TckCurve(knots, b.c, k)
+    elif per and u is not None:
+        # FITPACK's clocur with given parameters: the closed smoothing condition on the period
+        # [u[0], u[-1]], the last point (the first again) left out, as fpclos leaves it
+        uu = np.asarray(u, dtype=np.float64)
+        curve, _ = _lekalo.fit_periodic(uu, pts, w=w**2, k=k, s=float(s))
     elif per:
-        if u is not None:
-            raise NotImplementedError("lekalo.scipy.splprep: u with per=1 and s > 0 is not available yet")
         curve, uu = _lekalo.fit_closed(np.ascontiguousarray(pts[:-1]), w=w[:-1] ** 2, k=k, s=float(s))
     else:
-        curve, uu = _lekalo.make_splprep(pts, w=w, u=None if u is None else np.asarray(u, dtype=np.float64), k=k, s=float(s))
+        # FITPACK's parcur: the smoothing condition, the end knots at ub and ue when given
+        domain = None if ub is None else (ub, ue)
+        uu = None if u is None else np.asarray(u, dtype=np.float64)
+        curve, uu = _lekalo.make_splprep(pts, w=w, u=uu, k=k, s=float(s), domain=domain)
     tt = np.ascontiguousarray(curve.knots)
     c = np.ascontiguousarray(np.asarray(curve.control).T)
     tcku = [tt, list(c), k], np.asarray(uu)

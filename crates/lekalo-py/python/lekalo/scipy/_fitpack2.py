@@ -28,9 +28,8 @@ from ._bivariate import (
     _value,
 )
 from ._bspline import _one_number, _pad_rows
-from ._fitpack import _splrep, spalde, splantider, splder, splev, splint, sproot
+from ._fitpack import _splrep_rounds, spalde, splantider, splder, splev, splint, sproot
 from ._interpolate import make_lsq_spline
-from ._splrep import make_splrep
 
 _EXTRAP_MODES = {0: 0, "extrapolate": 0, 1: 1, "zeros": 1, 2: 2, "raise": 2, 3: 3, "const": 3}
 
@@ -46,8 +45,8 @@ class UnivariateSpline:
     """``scipy.interpolate.UnivariateSpline``: the spline of degree ``k`` on FITPACK's knots whose
     weighted residual ``Σ (w_i (y_i − s(x_i)))²`` is ``s`` (``len(w)`` by default), lekalo's
     ``splrep`` with SciPy's knot limit: the rounds stop at ``max(m // 2, 2k + 2)`` knots and go
-    on from there, as SciPy's second ``curfit`` call (lekalo's ``make_splrep(nest=…,
-    resume=True)``)."""
+    on from there, as SciPy's second ``curfit`` call (lekalo's ``fit_smoothing_condition(nest=…,
+    resume=True)``), whose ``report["rounds"]`` ``set_smoothing_factor`` continues."""
 
     def __init__(
         self, x: Any, y: Any, w: Any = None, bbox: Any = (None, None), k: int = 3, s: Any = None,
@@ -123,9 +122,15 @@ class UnivariateSpline:
         y = np.asarray(y, dtype=np.float64)
         self._data = (x, y, w, xb, xe, k, s)
         # SciPy's curfit call: nest = max(m // 2, 2k + 2) knots, then on ier = 1 (nest reached)
-        # a second call with iopt = 1 from the knots reached and nest = m + k + 1
+        # a second call with iopt = 1 from the knots reached and nest = m + k + 1; the state of
+        # the rounds kept for set_smoothing_factor (FITPACK's fpint, nrdata, ier)
         nest = None if s == 0 or t is not None else max(len(x) // 2, 2 * k + 2)
-        self._eval_args = _splrep(x, y, w, xb, xe, k, 0, s, t, 0, 0, 1, nest=nest)
+        self._eval_args, self._rounds = _splrep_rounds(x, y, w, xb, xe, k, 0, s, t, 0, 0, 1, nest=nest)
+        self._set_residual()
+
+    def _set_residual(self) -> None:
+        """FITPACK's ``fp`` of the fit of ``self._data``: 0 for the interpolating spline."""
+        x, y, w, _, _, _, s = self._data
         if s == 0:
             # FITPACK reports fp = 0 for the interpolating spline (s = 0), not the rounding left
             self._fp = 0.0
@@ -139,6 +144,7 @@ class UnivariateSpline:
         t, c, k = tck
         self._eval_args = tck
         self._data = (None, None, None, None, None, k, None)
+        self._rounds = None
         self._fp = None
         self.ext = ext
         return self
@@ -187,12 +193,14 @@ class UnivariateSpline:
 
     def set_smoothing_factor(self, s: float) -> None:
         """Refit with the smoothing factor ``s``, continuing from the knots of the last fit as
-        FITPACK's ``curfit`` with ``iopt=1`` (SciPy's ``fpcurf1``): where ``s`` is at least the
-        residual of the least-squares polynomial, or the last fit had no interior knot, the fit
-        starts over (a new ``UnivariateSpline(..., s=s)``); where the least-squares spline on the
-        current knots already has a residual at most ``s``, it is smoothed on those knots
-        (lekalo's ``smoothing_on_knots``, ``make_splrep(t=..., s=...)``). Adding knots to the
-        current ones is not available yet (``NotImplementedError``)."""
+        FITPACK's ``curfit`` with ``iopt=1`` (SciPy's ``fpcurf1``), lekalo's
+        ``fit_smoothing_condition(start=...)``: where ``s`` is at least the residual of the
+        least-squares polynomial, or the last fit had no interior knot, the rounds start over;
+        otherwise the least-squares spline on the current knots is kept, or smoothed, when its
+        residual is within or below ``s``, and gets knots added as the earlier rounds would have
+        gone on when above, under SciPy's knot limit of the last fit. ``s = 0`` interpolates.
+        After an interpolating fit (``s = 0``) FITPACK reads a residual it never set: that case
+        raises ``NotImplementedError``."""
         x, y, w, xb, xe, k, s_old = self._data
         if x is None:
             raise TypeError(
@@ -207,35 +215,20 @@ class UnivariateSpline:
             raise ValueError("s should be s >= 0.0")
         xb = x[0] if xb is None else float(xb)
         xe = x[-1] if xe is None else float(xe)
-        ww = np.ones_like(x) if w is None else np.asarray(w, dtype=np.float64)
-        t = self._eval_args[0]
         if s > 0.0 and s_old == 0.0:
             # FITPACK's iopt=1 after s=0 reads a residual that its interpolation never set
             raise NotImplementedError(
                 "lekalo.scipy: UnivariateSpline.set_smoothing_factor after an interpolating fit "
                 "(s=0) is not available: make a new UnivariateSpline(x, y, s=s) instead"
             )
-        fresh = s == 0.0 or len(t) == 2 * k + 2
-        if not fresh:
-            poly = make_lsq_spline(x, y, np.r_[[xb] * (k + 1), [xe] * (k + 1)], k, w=w)
-            fresh = s >= float(np.sum((ww * (poly(x) - y)) ** 2))
-        if fresh:
+        if s == 0.0:
             self._fit(x, y, w, (xb, xe), k, s, None)
-            self._reset_class()
-            return
-        lsq = make_lsq_spline(x, y, t, k, w=w)
-        fp = float(np.sum((ww * (lsq(x) - y)) ** 2))
-        if fp > s:
-            raise NotImplementedError(
-                f"lekalo.scipy: UnivariateSpline.set_smoothing_factor({s!r}) is below the least-squares "
-                f"residual on the current knots ({fp:.6g}): FITPACK would add knots to them, which is "
-                "not available yet; make a new UnivariateSpline(x, y, s=s) instead (FITPACK's knots "
-                "placed from the start)"
+        else:
+            self._data = (x, y, w, xb, xe, k, s)
+            self._eval_args, self._rounds = _splrep_rounds(
+                x, y, w, xb, xe, k, 0, s, None, 0, 0, 1, start=self._rounds
             )
-        spl = make_splrep(x, y, w=w, t=t, k=k, s=s)
-        self._data = (x, y, w, xb, xe, k, s)
-        self._eval_args = (spl.t, _pad_rows(spl.c, spl.t.shape[0]), k)
-        self._fp = float(np.sum((ww * (spl(x) - y)) ** 2))
+            self._set_residual()
         self._reset_class()
 
 

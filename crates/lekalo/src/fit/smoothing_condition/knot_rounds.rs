@@ -3,7 +3,9 @@
 //! `docs/theory/fitting.md#smoothing-condition`).
 
 use super::lsq_pass::{back_substitute, LsqPass, Observations};
-use super::{KnotRounds, Rounds, SMOOTHING_RTOL};
+use super::{
+    check_max_knots, KnotLimit, KnotRounds, Rounds, RoundsStart, RoundsState, SMOOTHING_RTOL,
+};
 use crate::error::{Error, Result};
 use crate::fit::banded::BandedQr;
 use crate::fit::progress::Steps;
@@ -11,12 +13,13 @@ use crate::fit::progress::Steps;
 /// Step 2 of [`smoothing_condition`](super::smoothing_condition): the rounds of least squares
 /// and knot addition, each round's knot vector passed to `seen` before its pass, each round a
 /// step of `steps`; the end knots at `domain` (checked to hold the data), else at the data's
-/// ends; a round's second and later knots placed as `rounds` says. `(cap, then)` bound the
-/// interior knots: the rounds add at most up to `cap`; once there, they end with the
-/// least-squares spline if `then ≤ cap` (FITPACK `curfit`'s `ier = 1` at `nest`), else go on
-/// up to `then` from the knots reached, adding one knot next as a first round does (a second
-/// `fpcurf` call with `iopt = 1` and the `ier = 1` of the first, as SciPy's `UnivariateSpline`
-/// makes it).
+/// ends; a round's second and later knots placed as `rounds` says. `start` says where the rounds
+/// begin ([`RoundsStart`]) and under which [`KnotLimit`]: the rounds add interior knots up to
+/// the limit; once there, they end with the least-squares spline for [`KnotLimit::Stop`]
+/// (FITPACK `curfit`'s `ier = 1` at `nest`), and for [`KnotLimit::Resume`] go on without it
+/// from the knots reached, adding one knot next as a first round does (a second `fpcurf` call
+/// with `iopt = 1` and the `ier = 1` of the first, as SciPy's `UnivariateSpline` makes it).
+/// Returns where the rounds ended and the [`RoundsState`] a later call goes on from.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn knot_rounds(
     obs: &Observations,
@@ -24,10 +27,10 @@ pub(super) fn knot_rounds(
     s: f64,
     domain: Option<(f64, f64)>,
     rounds: KnotRounds,
-    (mut cap, then): (usize, usize),
+    start: RoundsStart<'_>,
     steps: &Steps<'_, '_>,
     seen: &mut dyn FnMut(&[f64]),
-) -> Result<Rounds<BandedQr>> {
+) -> Result<(Rounds<BandedQr>, RoundsState)> {
     let md = obs.sites.len();
     if md < k + 1 {
         return Err(Error::TooFew {
@@ -39,11 +42,33 @@ pub(super) fn knot_rounds(
     let acc = SMOOTHING_RTOL * s;
     // knot counts of the polynomial and of interpolation
     let (nmin, nmax) = (2 * k + 2, md + k + 1);
+    let full = nmax - nmin;
+    let limit = start.limit();
+    let (mut cap, then) = limit_caps(k, limit)?;
     let mut knots = Knots::new(&obs.sites, k, domain);
+    let mut tally = Tally {
+        fp0: f64::INFINITY,
+        fpold: 0.0,
+        nplus: 0,
+        restart: false,
+    };
     if s == 0.0 {
         knots.interpolation(&obs.sites);
+    } else if let RoundsStart::Continue(st) = start {
+        st.check(&obs.sites, full)?;
+        // `curfit` with `iopt = 1` starts over from the polynomial when the last fit had no
+        // interior knot or `s ≥ fp0`
+        if !st.interior.is_empty() && st.fp0 > s {
+            knots.resume_at(&obs.sites, &st.interior);
+            tally = Tally {
+                fp0: st.fp0,
+                fpold: st.fp_before,
+                nplus: st.nplus,
+                restart: st.restart,
+            };
+        }
     }
-    let (mut fp0, mut fpold, mut nplus) = (f64::INFINITY, 0.0, 0usize);
+    let mut left = limit;
     let mut pass = LsqPass::new(obs, k);
     loop {
         steps.tick()?;
@@ -54,51 +79,52 @@ pub(super) fn knot_rounds(
         let c = back_substitute(&qr)?;
         let fp = qr.rss;
         if n == nmin {
-            fp0 = fp;
+            // FITPACK's `ier = −2`
+            tally.fp0 = fp;
+            tally.restart = true;
         }
         let fpms = fp - s;
-        if accepts_least_squares(fpms, acc) {
-            return Ok(Rounds::Done { t, c });
+        let at_pass = tally;
+        // the state of this pass, `restart` FITPACK's `ier ≠ 0` on return
+        let state = |restart| Tally { restart, ..at_pass }.state(&knots.interior, left);
+        if accepts_least_squares(fpms, acc) || (fpms < 0.0 && n == nmin) {
+            return Ok((Rounds::Done { t, c }, state(tally.restart)));
         }
         if fpms < 0.0 {
-            if n == nmin {
-                return Ok(Rounds::Done { t, c });
-            }
-            return Ok(Rounds::Smooth {
+            let smooth = Rounds::Smooth {
                 t,
                 qr,
-                fp0,
+                fp0: tally.fp0,
                 fp_inf: fp,
-            });
+            };
+            return Ok((smooth, state(tally.restart)));
         }
         if n >= nmax {
-            // interpolation
-            return Ok(Rounds::Done { t, c });
+            // interpolation (FITPACK's `ier = −1`)
+            return Ok((Rounds::Done { t, c }, state(true)));
         }
-        // one knot in the first round
-        let mut first = n == nmin;
         if knots.count() >= cap {
             if then <= cap {
-                // as many knots as allowed
-                return Ok(Rounds::Done { t, c });
+                // as many knots as allowed (FITPACK's `ier = 1`)
+                return Ok((Rounds::Done { t, c }, state(true)));
             }
             // `fpcurf` called again with `iopt = 1` and the `ier = 1` of its stop: it repeats
             // this pass and, `ier` not being 0, adds one knot as in the first round
             cap = then;
-            first = true;
+            left = KnotLimit::Unlimited;
+            tally.restart = true;
         }
-        nplus = if first {
+        tally.nplus = if std::mem::take(&mut tally.restart) {
             1
         } else {
-            next_nplus(nplus, fpms, fpold - fp, acc)
+            next_nplus(tally.nplus, fpms, tally.fpold - fp, acc)
         };
-        fpold = fp;
+        tally.fpold = fp;
         pass.residuals(obs, &c);
         knots.span_sums(obs, &pass, &t);
-        let full = nmax - 2 * k - 2;
         let added = match rounds {
-            KnotRounds::Shared => knots.add_up_to(&obs.sites, nplus, full, cap),
-            KnotRounds::Refit => knots.add_refitting(obs, &mut pass, nplus, full, cap)?,
+            KnotRounds::Shared => knots.add_up_to(&obs.sites, tally.nplus, full, cap),
+            KnotRounds::Refit => knots.add_refitting(obs, &mut pass, tally.nplus, full, cap)?,
         };
         match added {
             Added::Some => {}
@@ -106,10 +132,58 @@ pub(super) fn knot_rounds(
             // no span can be split without crowding an end: the knots of interpolation, when
             // `cap` allows them
             Added::None if full <= cap => knots.interpolation(&obs.sites),
-            Added::None => return Ok(Rounds::Done { t, c }),
+            Added::None => {
+                let st = Tally {
+                    restart: false,
+                    ..at_pass
+                };
+                return Ok((Rounds::Done { t, c }, st.state(&knots.interior, left)));
+            }
         }
     }
 }
+
+/// FITPACK's bookkeeping across the rounds: `fp0` (the polynomial's residual), `fpold` (the
+/// residual of the pass before), `nplus` (the knots the last round set out to add) and
+/// `ier ≠ 0` (the next round adds one knot, as a first round does).
+#[derive(Clone, Copy)]
+struct Tally {
+    fp0: f64,
+    fpold: f64,
+    nplus: usize,
+    restart: bool,
+}
+
+impl Tally {
+    /// The [`RoundsState`] of a pass on the interior knots `interior` under `limit`.
+    fn state(self, interior: &[f64], limit: KnotLimit) -> RoundsState {
+        RoundsState {
+            interior: interior.to_vec(),
+            fp0: self.fp0,
+            fp_before: self.fpold,
+            nplus: self.nplus,
+            restart: self.restart,
+            limit,
+        }
+    }
+}
+
+/// The interior knots the rounds may place under `limit` before they stop, and those they may
+/// place after: `(cap, then)`, `usize::MAX` for no bound; `then ≤ cap` when they stop there.
+///
+/// # Errors
+/// [`Error::TooFew`] for a limit below `2·degree + 2` knots.
+pub(super) fn limit_caps(degree: usize, limit: KnotLimit) -> Result<(usize, usize)> {
+    Ok(match limit {
+        KnotLimit::Unlimited => (usize::MAX, usize::MAX),
+        KnotLimit::Stop(n) => {
+            let cap = check_max_knots(degree, Some(n))?;
+            (cap, cap)
+        }
+        KnotLimit::Resume(n) => (check_max_knots(degree, Some(n))?, usize::MAX),
+    })
+}
+
 /// What [`Knots::add_up_to`] did.
 pub(in crate::fit) enum Added {
     /// Knots were added.
@@ -183,6 +257,27 @@ impl Knots {
                 }
             })
             .collect();
+    }
+
+    /// The interior knots `interior` of an earlier call's rounds, FITPACK's count `nrdata` of
+    /// the distinct parameters strictly inside each span taken afresh (the first and last
+    /// parameter bounding the end spans, as [`Knots::new`] counts them); `fpint` is computed
+    /// by the next round's [`Knots::span_sums`].
+    fn resume_at(&mut self, sites: &[f64], interior: &[f64]) {
+        self.interior = interior.to_vec();
+        let mut bounds = Vec::with_capacity(interior.len() + 2);
+        bounds.push(sites[0]);
+        bounds.extend_from_slice(interior);
+        bounds.push(sites[sites.len() - 1]);
+        self.nrdata = bounds
+            .windows(2)
+            .map(|w| {
+                let lo = sites.partition_point(|&u| u <= w[0]);
+                let hi = sites.partition_point(|&u| u < w[1]);
+                hi.saturating_sub(lo)
+            })
+            .collect();
+        self.fpint = vec![0.0; self.nrdata.len()];
     }
 
     /// `fpint`: the residual of each span, a point on a knot counting half to each side.

@@ -285,6 +285,141 @@ pub fn smoothing_condition_with_limit(
     limit: KnotLimit,
     progress: &Progress<'_>,
 ) -> Result<CurveFit> {
+    let start = RoundsStart::Fresh(limit);
+    smoothing_condition_from(data, degree, s, domain, rounds, start, progress).map(|(f, _)| f)
+}
+
+/// Where the knot rounds of a smoothing condition ended, for a later call with another `s` on
+/// the same data to go on from: what FITPACK's `fpcurf` keeps between calls for `curfit`'s
+/// `iopt = 1` (in `fpint(n)`, `fpint(n − 1)`, `nrdata(n)` and `ier`; Dierckx, "Curve and
+/// Surface Fitting with Splines", 1993, §5.2.1), as SciPy's
+/// `UnivariateSpline.set_smoothing_factor` uses it. Returned by [`smoothing_condition_from`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct RoundsState {
+    /// The interior knots of the last least-squares pass: those of the fit.
+    pub interior: Vec<f64>,
+    /// `fp0`: the weighted residual sum of squares of the least-squares polynomial.
+    pub fp0: f64,
+    /// `fpold`: the residual of the least-squares pass before the last (0 when the last pass
+    /// was the first of its call).
+    pub fp_before: f64,
+    /// `nplus`: the number of knots the round before the last pass set out to add.
+    pub nplus: usize,
+    /// Whether the next round adds one knot, as a first round does (FITPACK's `ier ≠ 0`: the
+    /// rounds ended at the polynomial, at interpolation or at their knot limit).
+    pub restart: bool,
+    /// The knot limit a continuation runs under: the call's own, or [`KnotLimit::Unlimited`]
+    /// once the rounds went past a [`KnotLimit::Resume`] limit (SciPy's `nest` raised to
+    /// `m + k + 1` for good).
+    pub limit: KnotLimit,
+}
+
+impl RoundsState {
+    /// The state fits the distinct data parameters `sites`: finite residuals, interior knots
+    /// strictly increasing strictly inside the first and last parameter, at most `full` of
+    /// them (those of interpolation), and each at a parameter unless there are `full` (the
+    /// knots of interpolation, between the parameters for even degree), as the rounds place
+    /// them.
+    fn check(&self, sites: &[f64], full: usize) -> Result<()> {
+        let bad = |reason: String| Error::InvalidArgument {
+            what: ROUNDS_STATE.into(),
+            reason: format!(
+                "{reason}; continue only from the state an earlier smoothing condition on the \
+                 same data returned"
+            ),
+        };
+        check_finite(ROUNDS_STATE, &[self.fp0, self.fp_before])?;
+        check_finite(ROUNDS_STATE, &self.interior)?;
+        let (first, last) = (sites[0], sites[sites.len() - 1]);
+        if self.interior.len() > full {
+            return Err(bad(format!(
+                "{} interior knots, more than the {full} of interpolation",
+                self.interior.len()
+            )));
+        }
+        let mut before = first;
+        for (i, &u) in self.interior.iter().enumerate() {
+            if !(u > before && u < last) {
+                return Err(bad(format!(
+                    "interior knot {i} = {u} is not strictly between {before} and {last}"
+                )));
+            }
+            if self.interior.len() < full && sites.binary_search_by(|v| v.total_cmp(&u)).is_err() {
+                return Err(bad(format!(
+                    "interior knot {i} = {u} is not a data parameter, where the rounds place knots"
+                )));
+            }
+            before = u;
+        }
+        Ok(())
+    }
+}
+
+/// What the errors about a [`RoundsState`] name.
+const ROUNDS_STATE: &str = "state of earlier knot rounds (RoundsState)";
+
+/// Where [`smoothing_condition_from`] starts its knot rounds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RoundsStart<'a> {
+    /// From the least-squares polynomial (FITPACK `curfit`'s `iopt = 0`), under this limit.
+    Fresh(KnotLimit),
+    /// From where an earlier call on the same data ended (`curfit`'s `iopt = 1`), under the
+    /// limit it left ([`RoundsState::limit`]).
+    Continue(&'a RoundsState),
+}
+
+impl RoundsStart<'_> {
+    /// The knot limit the rounds run under.
+    fn limit(self) -> KnotLimit {
+        match self {
+            RoundsStart::Fresh(limit) => limit,
+            RoundsStart::Continue(st) => st.limit,
+        }
+    }
+}
+
+/// [`smoothing_condition_with_limit`] started as `start` says, returning with the fit the
+/// [`RoundsState`] a later call goes on from: FITPACK `curfit` with `iopt = 0` for
+/// [`RoundsStart::Fresh`], with `iopt = 1` for [`RoundsStart::Continue`] (Dierckx 1993, §5.2.1;
+/// SciPy's `UnivariateSpline.set_smoothing_factor`, which calls `fpcurf` again on the state of
+/// the last fit). A continuation with `s > 0` starts over from the polynomial when the earlier
+/// fit had no interior knot or `s ≥ fp0`; otherwise its first round is the least-squares pass
+/// on the earlier knots, which is the answer, or is smoothed (step 3), when its residual is
+/// within or below `s`, and otherwise gets knots added as the earlier rounds would have gone on:
+/// `nplus` from the earlier rounds' last two residuals and count (one knot when
+/// [`RoundsState::restart`]), the knots where the residual is largest. Its knots may differ
+/// from a fresh fit's with the same `s`, whose rounds took other counts of knots on the way
+/// (`nplus` depends on `s`). With `s = 0` both give the knots of interpolation.
+///
+/// ```
+/// use lekalo::fit::{smoothing_condition_from, FitData, KnotLimit, KnotRounds, RoundsStart};
+/// use lekalo::{PointsRef, Progress};
+/// let x: Vec<f64> = (0..60).map(|k| k as f64 / 6.0).collect();
+/// let y: Vec<f64> = x.iter().enumerate().map(|(k, t)| t.sin() + 0.1 * ((k * 7919 % 13) as f64 - 6.0) / 6.0).collect();
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+/// let quiet = Progress::new();
+/// let fit = |s, start| smoothing_condition_from(&data, 3, s, None, KnotRounds::Shared, start, &quiet);
+/// let (coarse, state) = fit(1.0, RoundsStart::Fresh(KnotLimit::Unlimited))?;
+/// // s = 0.2 needs more knots: the rounds go on from the coarse fit's knots
+/// let (fine, _) = fit(0.2, RoundsStart::Continue(&state))?;
+/// assert!(fine.curve.knots().len() > coarse.curve.knots().len());
+/// assert!(fine.report.weighted_rss < 0.2 * 1.001);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`smoothing_condition_with_limit`]; [`Error::NonFinite`] / [`Error::InvalidArgument`]
+/// for a [`RoundsState`] that does not fit the data (knots not strictly increasing inside the
+/// data's parameters, not at data parameters, more than interpolation's).
+pub fn smoothing_condition_from(
+    data: &FitData<'_>,
+    degree: usize,
+    s: f64,
+    domain: Option<(f64, f64)>,
+    rounds: KnotRounds,
+    start: RoundsStart<'_>,
+    progress: &Progress<'_>,
+) -> Result<(CurveFit, RoundsState)> {
     check_condition_args(degree, s)?;
     if let Some(domain) = domain {
         check_domain(data, domain)?;
@@ -293,21 +428,11 @@ pub fn smoothing_condition_with_limit(
     let obs = Observations::new(data);
     check_reachable(&obs, s)?;
     let k = degree;
-    let caps = match limit {
-        KnotLimit::Unlimited => (usize::MAX, usize::MAX),
-        KnotLimit::Stop(n) => {
-            let cap = check_max_knots(k, Some(n))?;
-            (cap, cap)
-        }
-        KnotLimit::Resume(n) => (check_max_knots(k, Some(n))?, usize::MAX),
-    };
-    knot_rounds(&obs, k, s, domain, rounds, caps, &steps, &mut |_| {})?.into_fit(
-        data,
-        &obs,
-        k,
-        &steps,
-        |t, qr, fp0, fp_inf| smooth_on(&obs, k, t, qr, s, fp0, fp_inf, &steps),
-    )
+    let (ended, state) = knot_rounds(&obs, k, s, domain, rounds, start, &steps, &mut |_| {})?;
+    let fit = ended.into_fit(data, &obs, k, &steps, |t, qr, fp0, fp_inf| {
+        smooth_on(&obs, k, t, qr, s, fp0, fp_inf, &steps)
+    })?;
+    Ok((fit, state))
 }
 
 /// The knot vectors of the rounds of [`smoothing_condition`], in order: the clamped knot vector
@@ -341,9 +466,10 @@ pub fn smoothing_knot_sequence(
     rounds: KnotRounds,
 ) -> Result<Vec<Vec<f64>>> {
     check_condition_args(degree, s)?;
-    let cap = check_max_knots(degree, max_knots)?;
+    check_max_knots(degree, max_knots)?;
+    let start = RoundsStart::Fresh(max_knots.map_or(KnotLimit::Unlimited, KnotLimit::Stop));
     let obs = Observations::new(data);
-    rounds_knots(|steps, seen| knot_rounds(&obs, degree, s, None, rounds, (cap, cap), steps, seen))
+    rounds_knots(|steps, seen| knot_rounds(&obs, degree, s, None, rounds, start, steps, seen))
 }
 
 /// The knot vectors a knot-round loop `rounds(steps, seen)` passes to `seen`, in order, with

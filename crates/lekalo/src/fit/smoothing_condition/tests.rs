@@ -220,3 +220,174 @@ fn resumed_rounds_go_on_from_the_knots_of_the_limit() {
         Err(Error::TooFew { .. })
     ));
 }
+
+/// The data of the continuation tests: 200 points `x_i = i/20` of a chirp with a deterministic
+/// ripple, as the SciPy script that produced the stored knots builds them.
+fn chirp() -> (Vec<f64>, Vec<f64>) {
+    let x: Vec<f64> = (0..200).map(|i| f64::from(i) / 20.0).collect();
+    let y = (0..200u32)
+        .zip(&x)
+        .map(|(i, &t)| {
+            let ripple = f64::from(i * 7919 % 13) - 6.0;
+            t.sin() * (0.3 * t * t).cos() + 0.05 * ripple / 6.0
+        })
+        .collect();
+    (x, y)
+}
+
+/// The rounds of `s_first` with SciPy's `UnivariateSpline` limit (`Resume(m/2)`), then
+/// continued with `s`: the fit and the two states.
+fn continued(
+    data: &FitData<'_>,
+    s_first: f64,
+    s: f64,
+) -> (CurveFit, CurveFit, RoundsState, RoundsState) {
+    let quiet = Progress::new();
+    let fit = |s, start| {
+        smoothing_condition_from(data, 3, s, None, KnotRounds::Shared, start, &quiet).unwrap()
+    };
+    let (first, state) = fit(s_first, RoundsStart::Fresh(KnotLimit::Resume(100)));
+    let (then, state2) = fit(s, RoundsStart::Continue(&state));
+    (first, then, state, state2)
+}
+
+/// SciPy 1.17's `UnivariateSpline(x, y, s=s_first)` followed by `set_smoothing_factor(s)`
+/// (FITPACK `curfit` with `iopt = 1`): the knots, as indices of the data, differ from a fresh
+/// fit with `s`, because the first rounds added other counts of knots on the way.
+#[test]
+fn continued_rounds_give_fitpacks_knots_for_the_new_s() {
+    let (x, y) = chirp();
+    let data = FitData::new(crate::PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let cases: [(f64, f64, &[usize], &[usize]); 2] = [
+        (
+            20.0,
+            1.0,
+            &[
+                13, 25, 50, 63, 75, 88, 100, 113, 125, 132, 138, 144, 150, 157, 163, 169, 175, 187,
+            ],
+            &[
+                25, 50, 63, 75, 88, 100, 107, 113, 119, 125, 138, 150, 157, 163, 169, 175, 187,
+            ],
+        ),
+        (
+            5.0,
+            0.5,
+            &[
+                25, 50, 63, 75, 88, 100, 107, 113, 125, 132, 138, 150, 157, 163, 169, 175, 181, 187,
+            ],
+            &[
+                25, 50, 63, 75, 88, 100, 107, 113, 119, 125, 138, 144, 150, 157, 163, 169, 175,
+                181, 187,
+            ],
+        ),
+    ];
+    let quiet = Progress::new();
+    for (s_first, s, scipy, fresh) in cases {
+        let (first, then, state, _) = continued(&data, s_first, s);
+        let interior = |f: &CurveFit| {
+            let t = f.curve.knots().as_slice();
+            t[4..t.len() - 4].to_vec()
+        };
+        let at: Vec<f64> = scipy.iter().map(|&i| x[i]).collect();
+        assert_eq!(interior(&then), at, "s = {s_first} then {s}: SciPy's knots");
+        assert_eq!(state.interior, interior(&first), "the state's knots");
+        // knots are only added
+        assert!(state.interior.iter().all(|u| at.contains(u)), "knots lost");
+        assert!(then.report.weighted_rss < s * (1.0 + SMOOTHING_RTOL));
+        // a fresh fit with s takes other knots (SciPy's too)
+        let limit = KnotLimit::Resume(100);
+        let fresh_fit =
+            smoothing_condition_with_limit(&data, 3, s, None, KnotRounds::Shared, limit, &quiet)
+                .unwrap();
+        let at: Vec<f64> = fresh.iter().map(|&i| x[i]).collect();
+        assert_eq!(interior(&fresh_fit), at, "s = {s}: SciPy's fresh knots");
+    }
+}
+
+/// A continuation with the `s` of the earlier fit repeats its last pass: the same fit; with a
+/// larger `s` below `fp0` it keeps the knots and smooths more; with `s ≥ fp0` it starts over
+/// (the polynomial, as a fresh fit).
+#[test]
+fn continued_rounds_keep_or_smooth_on_the_knots_reached() {
+    let (x, y) = chirp();
+    let data = FitData::new(crate::PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let (first, same, state, state2) = continued(&data, 1.0, 1.0);
+    assert_eq!(same.curve.knots(), first.curve.knots(), "knots");
+    assert_eq!(same.curve, first.curve, "the same fit");
+    assert_eq!(state2, state, "the same state");
+    let (first, looser, state, _) = continued(&data, 1.0, 3.0);
+    assert_eq!(looser.curve.knots(), first.curve.knots(), "knots kept");
+    let rss = looser.report.weighted_rss;
+    assert!(rss > 1.5 && rss <= 3.0, "smoothed to {rss}");
+    assert!(state.fp0 > 3.0, "fp0 = {}", state.fp0);
+    let (_, poly, _, state2) = continued(&data, 1.0, state.fp0 * 1.5);
+    assert_eq!(poly.curve.knots().len(), 8, "the polynomial");
+    assert!(state2.interior.is_empty() && state2.restart, "{state2:?}");
+}
+
+/// A [`KnotLimit::Stop`] reached leaves a state that restarts (FITPACK's `ier = 1`) under the
+/// same limit, so that a continuation stops there again; a [`KnotLimit::Resume`] passed leaves
+/// no limit.
+#[test]
+fn the_state_carries_the_limit_left() {
+    let (x, y) = chirp();
+    let data = FitData::new(crate::PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let quiet = Progress::new();
+    let fit = |s, start| {
+        smoothing_condition_from(&data, 3, s, None, KnotRounds::Shared, start, &quiet).unwrap()
+    };
+    let (stopped, state) = fit(0.1, RoundsStart::Fresh(KnotLimit::Stop(20)));
+    assert_eq!(stopped.curve.knots().len(), 20);
+    assert!(
+        state.restart && state.limit == KnotLimit::Stop(20),
+        "{state:?}"
+    );
+    let (again, _) = fit(0.1, RoundsStart::Continue(&state));
+    assert_eq!(again.curve.knots(), stopped.curve.knots());
+    let (resumed, state) = fit(0.1, RoundsStart::Fresh(KnotLimit::Resume(20)));
+    assert!(resumed.curve.knots().len() > 20);
+    assert_eq!(state.limit, KnotLimit::Unlimited);
+    let (_, state) = fit(5.0, RoundsStart::Fresh(KnotLimit::Resume(100)));
+    assert_eq!(state.limit, KnotLimit::Resume(100), "limit not reached");
+}
+
+#[test]
+fn a_state_that_does_not_fit_the_data_is_refused() {
+    let (x, y) = chirp();
+    let data = FitData::new(crate::PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let quiet = Progress::new();
+    let (_, state) = smoothing_condition_from(
+        &data,
+        3,
+        1.0,
+        None,
+        KnotRounds::Shared,
+        RoundsStart::Fresh(KnotLimit::Unlimited),
+        &quiet,
+    )
+    .unwrap();
+    let from = |st: &RoundsState| {
+        let start = RoundsStart::Continue(st);
+        smoothing_condition_from(&data, 3, 0.5, None, KnotRounds::Shared, start, &quiet)
+    };
+    assert!(from(&state).is_ok());
+    let mut off = state.clone();
+    off.interior[0] += 0.01;
+    assert!(
+        matches!(from(&off), Err(Error::InvalidArgument { ref reason, .. }) if reason.contains("not a data parameter")),
+        "{:?}",
+        from(&off)
+    );
+    let mut unsorted = state.clone();
+    unsorted.interior.swap(0, 1);
+    assert!(matches!(
+        from(&unsorted),
+        Err(Error::InvalidArgument { .. })
+    ));
+    let mut outside = state.clone();
+    outside.interior.push(x[199]);
+    assert!(matches!(from(&outside), Err(Error::InvalidArgument { .. })));
+    let mut nan = state;
+    nan.fp0 = f64::NAN;
+    assert!(matches!(from(&nan), Err(Error::NonFinite { .. })));
+}
