@@ -59,7 +59,7 @@ fn knot_jvp_n(s: &TensorBSpline, xs: &[f64], tangents: &[Option<&[f64]>]) -> (Ve
     (out, tan)
 }
 
-/// The tangent of knot `k` of direction `axis` alone.
+/// The JVP's tangent for the knot tangent `e` of direction `axis`, the others `None`.
 fn along(s: &TensorBSpline, xs: &[f64], axis: usize, e: &[f64]) -> Vec<f64> {
     let mut tangents: Vec<Option<&[f64]>> = vec![None; s.n_vars()];
     tangents[axis] = Some(e);
