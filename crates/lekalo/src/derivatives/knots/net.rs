@@ -326,7 +326,8 @@ impl TensorBSpline {
     /// direction, the tangent of its knots (one number a knot) or `None` (zero). Only the
     /// interior knots count (the tangents of each direction's `p_a + 1` first and last knots
     /// are ignored), and at a knot of multiplicity `μ > 1` the derivative is one-sided, as for a
-    /// curve. O(m·Σ_a (p_a³ + p_a²·dim + Π_b (p_b + 1)·dim)) for the directions with a tangent.
+    /// curve. `O(m·Σ_a (p_a³ + p_a²·dim + Π_b (p_b + 1)·dim))` for the directions with a
+    /// tangent.
     ///
     /// ```
     /// use lekalo::{Points, TensorBSpline};
@@ -386,7 +387,7 @@ impl TensorBSpline {
     /// direction, overwritten, or `None`), with the derivatives of
     /// [`TensorBSpline::eval_batch_knot_jvp`], whose transpose this is
     /// (`docs/theory/derivatives.md`, "Knots"). Each direction's `p_a + 1` first and last knots
-    /// get zero. O(m·Σ_a (p_a³ + p_a²·dim + Π_b (p_b + 1)·dim)) for the directions asked.
+    /// get zero. `O(m·Σ_a (p_a³ + p_a²·dim + Π_b (p_b + 1)·dim))` for the directions asked.
     ///
     /// # Errors
     /// [`crate::Error::LengthMismatch`] for a buffer of the wrong length;
