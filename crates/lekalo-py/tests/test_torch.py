@@ -73,6 +73,39 @@ def test_nurbs_surface_and_tensor_gradients():
     assert_rel(gx, central(lambda b: plain(coef, b), pts, 1e-6), "tensor points")
 
 
+def test_nurbs_and_tensor_knot_gradients():
+    """The knots of nurbs_eval and tensor_bspline_eval: gradients the library's knot VJP, the
+    interior knots' against central differences, the end knots' zero."""
+    knots, ctrl, u = curve_case()
+    w = np.array([1.0, 0.5, 2.0, 1.5, 0.8, 1.2])
+    batch = np.stack([ctrl, -2 * ctrl])
+    (gk, gc), g = grads(lambda k, c: lt.nurbs_eval(k, c, w, u, 3), t64(knots), t64(batch))
+    plain = lambda k: sum(np.sum(lekalo.nurbs_curve_jvp(3, k, batch[i], w, u)[0] * g[i]) for i in range(2))  # noqa: E731
+    assert_rel(gk[4:6], central(plain, knots, 1e-6)[4:6], "NURBS interior knots, batch summed")
+    assert np.all(gk.numpy()[:4] == 0.0) and np.all(gk.numpy()[6:] == 0.0)
+    want = sum(lekalo.nurbs_curve_knot_vjp(3, knots, batch[i], w, u, np.ascontiguousarray(g[i])) for i in range(2))
+    assert_rel(gk, want, "NURBS knots, the kernel")
+    rng = np.random.default_rng(12)
+    kt = [np.array([0, 0, 0, 0.5, 1, 1, 1.0]), np.array([0, 0, 0.4, 1, 1.0]), np.array([0, 0, 0, 0.6, 1, 1, 1.0])]
+    degrees = (2, 1, 2)
+    coef, pts = rng.uniform(-1, 1, (4, 3, 4, 2)), np.array([[0.1, 0.45, 0.9], [0.3, 0.3, 0.7]])  # off the knots
+    gks, g = grads(lambda a, b, c: lt.tensor_bspline_eval([a, b, c], coef, pts, degrees), *[t64(k) for k in kt])
+    for a in range(3):
+        def plain(k, a=a):
+            moved = kt[:a] + [k] + kt[a + 1 :]
+            return np.sum(lekalo.TensorBSpline(moved, coef, list(degrees))(pts) * g)
+
+        p = degrees[a]
+        inner = slice(p + 1, len(kt[a]) - p - 1)
+        assert_rel(gks[a][inner], central(plain, kt[a], 1e-6)[inner], f"tensor knots[{a}]")
+    want = lekalo.tensor_bspline_knot_vjp(kt, coef, list(degrees), pts, g)
+    for a in range(3):
+        assert_rel(gks[a], want[a], f"tensor knots[{a}], the kernel")
+    # the knots of one variable alone, the others constants
+    (g1,), g = grads(lambda b: lt.tensor_bspline_eval([kt[0], b, kt[2]], coef, pts, degrees), t64(kt[1]))
+    assert_rel(g1, lekalo.tensor_bspline_knot_vjp(kt, coef, list(degrees), pts, g)[1], "one variable's knots")
+
+
 def test_fit_gradients():
     rng = np.random.default_rng(3)
     x = np.sort(rng.uniform(0, 1, 30))
@@ -134,8 +167,9 @@ def test_bad_input_says_so():
     knots, ctrl, u = curve_case()
     with pytest.raises(lekalo.InputError, match="float64"):
         lt.bspline_eval(knots, torch.tensor(ctrl, dtype=torch.float32), u, 3)
+    # the knots of the evaluations may ask for their gradient, those of the fits may not
     with pytest.raises(lekalo.InputError, match="knots"):
-        lt.bspline_eval(t64(knots), t64(ctrl), u, 3)
+        lt.fit_least_squares(t64(ctrl), u, t64(knots), 3)
     with pytest.raises(lekalo.InputError, match="lam > 0"):
         lt.fit_smoothing(u, t64(ctrl))
 

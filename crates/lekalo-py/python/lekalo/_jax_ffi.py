@@ -20,9 +20,9 @@ kernel call a batch element). Which linear inputs are present is a static parame
 symbolic-zero tangent is not passed, and a cotangent that is not wanted is not computed.
 
 Every kernel has the same operands: its knot vectors, then its differentiable arrays, one a
-kind (control points, weights, parameters...). A kernel whose knots are differentiable (B-spline
-curves and surfaces) passes them among the arrays, as kinds of their own (``knots``,
-``knots_u``, ``knots_v``), and none as constants. ``Kernel`` is the ``custom_jvp``
+kind (control points, weights, parameters...). A kernel whose knots are differentiable (the
+evaluations of curves, surfaces and tensor splines) passes them among the arrays, as kinds of
+their own (``knots``, ``knots_u``, ``knots_v``, ``knots_0``...), and none as constants. ``Kernel`` is the ``custom_jvp``
 function of such a kernel: values by its ``_eval`` target, tangents by ``LinearPair``.
 """
 

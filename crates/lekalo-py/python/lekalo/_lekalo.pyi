@@ -455,6 +455,22 @@ def nurbs_curve_vjp(
 def nurbs_curve_linearize(
     degree: int, knots: ArrayLike, control: ArrayLike, weights: ArrayLike, t: ArrayLike
 ) -> dict: ...
+def nurbs_curve_knot_jvp(
+    degree: int,
+    knots: ArrayLike,
+    control: ArrayLike,
+    weights: ArrayLike,
+    t: ArrayLike,
+    knots_tangent: ArrayLike,
+) -> Tuple[Array, Array]: ...
+def nurbs_curve_knot_vjp(
+    degree: int,
+    knots: ArrayLike,
+    control: ArrayLike,
+    weights: ArrayLike,
+    t: ArrayLike,
+    cotangent: ArrayLike,
+) -> Array: ...
 def interpolation_jvp(
     degree: int, knots: ArrayLike, params: ArrayLike, data_tangent: ArrayLike
 ) -> Array: ...
@@ -529,6 +545,20 @@ def tensor_bspline_vjp(
 def tensor_bspline_linearize(
     t: Sequence[ArrayLike], c: ArrayLike, k: Union[int, Sequence[int]], x: ArrayLike
 ) -> dict: ...
+def tensor_bspline_knot_jvp(
+    t: Sequence[ArrayLike],
+    c: ArrayLike,
+    k: Union[int, Sequence[int]],
+    x: ArrayLike,
+    t_tangent: Sequence[Optional[ArrayLike]],
+) -> Tuple[Array, Array]: ...
+def tensor_bspline_knot_vjp(
+    t: Sequence[ArrayLike],
+    c: ArrayLike,
+    k: Union[int, Sequence[int]],
+    x: ArrayLike,
+    cotangent: ArrayLike,
+) -> Tuple[Array, ...]: ...
 def bspline_surface_jvp(
     degree_u: int,
     degree_v: int,

@@ -22,10 +22,10 @@
   ``x``.
 
 The evaluations are differentiable, in forward and reverse mode, with respect to the control
-points and the parameters; ``bspline_eval`` and ``bspline_surface_eval`` also with respect to
-their knots (the interior ones: the ``degree + 1`` first and last knots of a direction bound
-the domain and are held fixed, their gradient zero; ``docs/theory/derivatives.md``, "Knots").
-The degrees are constants, and so are the knots of the other functions.
+points, the parameters and the knots (the interior ones: the ``degree + 1`` first and last
+knots of a direction bound the domain and are held fixed, their gradient zero;
+``docs/theory/derivatives.md``, "Knots"). The degrees are constants, and so are the knots of
+the fits, of ``interpolate`` and of the geometric functions.
 
 The four evaluations run inside the compiled program: their values, JVPs and VJPs are XLA
 custom calls (FFI targets written against XLA's C ABI in the native module,
@@ -54,8 +54,8 @@ Requirements and limits, each with a clear error:
 - float64 only: enable it with ``jax.config.update("jax_enable_x64", True)`` first;
 - first derivatives: a second derivative (``jax.hessian``, ``jacfwd(jacrev(...))``) raises
   ``NotImplementedError``;
-- derivatives with respect to the knots of ``nurbs_eval`` and ``tensor_bspline_eval`` raise
-  ``NotImplementedError``: pass them as constants;
+- derivatives with respect to the knots of ``interpolate``, the fits, ``arc_length`` and
+  ``closest_parameter`` raise ``NotImplementedError``: pass them as constants;
 - parameters must lie in the domain (and NURBS weights be positive): otherwise the error
   raised inside lekalo's FFI target reaches the caller carrying lekalo's
   message, which names the parameter and the domain (eagerly and under ``jit``), as
@@ -174,7 +174,7 @@ def _nurbs_out_shape(res):
 
 
 _NURBS = _jax_ffi.Kernel(
-    "nurbs_eval", "lekalo_nurbs", ("control", "weight", "parameter"), _nurbs_out_shape
+    "nurbs_eval", "lekalo_nurbs", ("knots", "control", "weight", "parameter"), _nurbs_out_shape
 )
 
 
@@ -184,8 +184,10 @@ def nurbs_eval(knots, control_points, weights, u, degree):
     Returns ``u.shape + (dim,)``, lekalo's evaluation as an XLA custom call (no host callback).
 
     Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
-    respect to ``control_points``, ``weights`` and ``u``; ``knots`` and ``degree`` are constants.
-    A non-positive weight raises lekalo's error from the custom call.
+    respect to ``control_points``, ``weights``, ``u`` and ``knots`` (the interior knots, with
+    ``bspline_eval``'s conventions: the knot derivative of the homogeneous curve
+    ``(w P, w)``, then the quotient rule, ``lekalo.nurbs_curve_knot_jvp`` / ``_vjp``);
+    ``degree`` is a constant. A non-positive weight raises lekalo's error from the custom call.
     """
     name = "nurbs_eval"
     _require_x64(name)
@@ -206,7 +208,7 @@ def nurbs_eval(knots, control_points, weights, u, degree):
             f"lekalo.jax.{name}: {n} control points of degree {degree} need {n + degree + 1} "
             f"knots (control points + degree + 1), got shape {knots.shape}"
         )
-    out = _NURBS((("degree", degree),), (knots,), (ctrl, w, u.reshape(-1)))
+    out = _NURBS((("degree", degree),), (), (knots, ctrl, w, u.reshape(-1)))
     return out.reshape(u.shape + ctrl.shape[-1:])
 
 
@@ -276,9 +278,16 @@ def _tensor_out_shape(res):
     return x.shape[:-1] + net.shape[-1:]
 
 
-_TENSOR = _jax_ffi.Kernel(
-    "tensor_bspline_eval", "lekalo_tensor", ("control", "point"), _tensor_out_shape
-)
+_TENSOR = {}
+
+
+def _tensor_kernel(n):
+    """The kernel of splines in ``n`` variables: one differentiable kind a knot vector
+    (``knots_0``, ...), then the net and the points."""
+    if n not in _TENSOR:
+        kinds = tuple(f"knots_{a}" for a in range(n)) + ("control", "point")
+        _TENSOR[n] = _jax_ffi.Kernel("tensor_bspline_eval", "lekalo_tensor", kinds, _tensor_out_shape)
+    return _TENSOR[n]
 
 
 def tensor_bspline_eval(knots, control_points, x, degrees):
@@ -290,10 +299,13 @@ def tensor_bspline_eval(knots, control_points, x, degrees):
     ``lekalo.TensorBSpline(knots, control_points, degrees)(x)``.
 
     Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
-    respect to ``control_points`` and ``x``, by lekalo's kernels as XLA custom calls
+    respect to ``control_points``, ``x`` and ``knots``, by lekalo's kernels as XLA custom calls
     (``lekalo.tensor_bspline_jvp`` and ``lekalo.tensor_bspline_vjp``: the net's Jacobian is the
     product of the ``N`` basis vectors on the ``Π (p_a + 1)`` block a point touches, the points'
-    the partial derivatives ``∂S/∂x_a``). The knots and degrees are constants.
+    the partial derivatives ``∂S/∂x_a``; ``lekalo.tensor_bspline_knot_jvp`` / ``_vjp``: along
+    each variable the curve's knot derivative on the net contracted with the other variables'
+    basis functions, the interior knots of each variable, with ``bspline_eval``'s conventions).
+    The degrees are constants.
     """
     name = "tensor_bspline_eval"
     _require_x64(name)
@@ -329,6 +341,6 @@ def tensor_bspline_eval(knots, control_points, x, degrees):
     scalar = ctrl.ndim == n
     c = ctrl[..., None] if scalar else ctrl
     static = (("n_vars", n),) + tuple((f"degree_{a}", p) for a, p in enumerate(degrees))
-    out = _TENSOR(static, knots, (c, x.reshape(-1, n)))
+    out = _tensor_kernel(n)(static, (), (*knots, c, x.reshape(-1, n)))
     out = out.reshape(x.shape[:-1] + c.shape[-1:])
     return out[..., 0] if scalar else out

@@ -24,11 +24,12 @@ Limits, each with a clear error:
 - float64 tensors only (``torch.float64``; ``lekalo.InputError`` otherwise);
 - first derivatives in reverse mode: no ``torch.func.jvp`` / forward-mode AD, no double
   backward (``create_graph=True`` derivatives of the backward are not tracked);
-- the knots of ``bspline_eval`` and ``bspline_surface_eval`` may ask for their gradient (the
-  interior knots': ``lekalo.bspline_curve_knot_vjp``, ``lekalo.bspline_surface_knot_vjp``; the
-  ``degree + 1`` first and last are held fixed, their gradient zero); the other knots, the
-  degrees, fit parameters and weights are constants (plain arrays or tensors whose gradient is
-  not asked for);
+- the knots of the four evaluations may ask for their gradient (the interior knots':
+  ``lekalo.bspline_curve_knot_vjp``, ``lekalo.nurbs_curve_knot_vjp``,
+  ``lekalo.bspline_surface_knot_vjp``, ``lekalo.tensor_bspline_knot_vjp``; the ``degree + 1``
+  first and last of a direction are held fixed, their gradient zero); the knots of the fits,
+  the degrees, fit parameters and weights are constants (plain arrays or tensors whose
+  gradient is not asked for);
 - runs on the CPU: tensors on another device are copied to the host and back.
 """
 
@@ -188,10 +189,10 @@ def bspline_eval(knots, control_points, u, degree):
 
 class _NurbsCurve(torch.autograd.Function):
     @staticmethod
-    def forward(ctx, ctrl, w, u, knots, degree):
-        c, ws, t = _np(ctrl), _np(w), _np(u)
+    def forward(ctx, ctrl, w, u, knots_t, degree):
+        c, ws, t, knots = _np(ctrl), _np(w), _np(u), _np(knots_t)
         batch, (wb, ub) = _batch_of(c, 2, (ws, 1), (t, 1))
-        ctx.save_for_backward(ctrl, w, u)
+        ctx.save_for_backward(ctrl, w, u, knots_t)
         ctx.args = (knots, degree, batch, wb, ub)
         vals = _looped(
             lambda cc, ww, tt: _lekalo.nurbs_curve_jvp(degree, knots, cc, ww, tt)[0],
@@ -204,33 +205,40 @@ class _NurbsCurve(torch.autograd.Function):
 
     @staticmethod
     def backward(ctx, g):
-        ctrl, w, u = ctx.saved_tensors
+        ctrl, w, u, knots_t = ctx.saved_tensors
         knots, degree, batch, wb, ub = ctx.args
+        arrays = ((_np(ctrl), True), (_np(w), wb), (_np(u), ub), (_np(g), True))
         gc, gw, gu = _looped(
             lambda cc, ww, tt, gg: _lekalo.nurbs_curve_vjp(degree, knots, cc, ww, tt, gg),
             batch,
-            (_np(ctrl), True),
-            (_np(w), wb),
-            (_np(u), ub),
-            (_np(g), True),
+            *arrays,
         )
         axes = tuple(range(len(batch)))
         if not wb and batch:
             gw = gw.sum(axis=axes)
         if not ub and batch:
             gu = gu.sum(axis=axes)
-        return _out(gc, ctrl), _out(gw, w), _out(gu, u), None, None
+        gk = None
+        if ctx.needs_input_grad[3]:
+            gk = _looped(
+                lambda cc, ww, tt, gg: _lekalo.nurbs_curve_knot_vjp(degree, knots, cc, ww, tt, gg),
+                batch,
+                *arrays,
+            )
+            gk = _out(_batch_sum(gk, batch), knots_t)
+        return _out(gc, ctrl), _out(gw, w), _out(gu, u), gk, None
 
 
 def nurbs_eval(knots, control_points, weights, u, degree):
     """``C(u)`` of the NURBS curve with Euclidean ``control_points`` (``(..., n, dim)``) and
     ``weights`` (``(n,)`` or ``(..., n)``) at ``u`` (``(m,)`` or ``(..., m)``); differentiable
-    with respect to the control points, the weights and ``u``."""
+    with respect to the control points, the weights, ``u`` and ``knots`` (the interior knots;
+    the ``degree + 1`` first and last are held fixed)."""
     name = "nurbs_eval"
     ctrl = _tensor(control_points, "control_points", name)
     w = _tensor(weights, "weights", name)
     u = _tensor(u, "u", name)
-    knots = _constant(knots, "the knots", name)
+    knots = _knots(knots, "the knots", name)
     return _NurbsCurve.apply(ctrl, w, u, knots, int(degree))
 
 
@@ -298,11 +306,11 @@ def bspline_surface_eval(knots_u, knots_v, control_points, u, v, degree_u, degre
 
 class _TensorSpline(torch.autograd.Function):
     @staticmethod
-    def forward(ctx, ctrl, x, knots, degrees):
+    def forward(ctx, ctrl, x, degrees, *knots_t):
         n = len(degrees)
-        c, p = _np(ctrl), _np(x)
+        c, p, knots = _np(ctrl), _np(x), [_np(k) for k in knots_t]
         batch, (xb,) = _batch_of(c, n + 1, (p, 2))
-        ctx.save_for_backward(ctrl, x)
+        ctx.save_for_backward(ctrl, x, *knots_t)
         ctx.args = (knots, degrees, batch, xb)
         vals = _looped(
             lambda cc, pp: _lekalo.tensor_bspline_jvp(knots, cc, degrees, pp)[0],
@@ -314,30 +322,41 @@ class _TensorSpline(torch.autograd.Function):
 
     @staticmethod
     def backward(ctx, g):
-        ctrl, x = ctx.saved_tensors
+        ctrl, x, *knots_t = ctx.saved_tensors
         knots, degrees, batch, xb = ctx.args
+        arrays = ((_np(ctrl), True), (_np(x), xb), (_np(g), True))
         gc, gx = _looped(
             lambda cc, pp, gg: _lekalo.tensor_bspline_vjp(knots, cc, degrees, pp, gg),
             batch,
-            (_np(ctrl), True),
-            (_np(x), xb),
-            (_np(g), True),
+            *arrays,
         )
         if not xb and batch:
             gx = gx.sum(axis=tuple(range(len(batch))))
-        return _out(gc, ctrl), _out(gx, x), None, None
+        gks = [None] * len(knots)
+        if any(ctx.needs_input_grad[3:]):
+            got = _looped(
+                lambda cc, pp, gg: _lekalo.tensor_bspline_knot_vjp(knots, cc, degrees, pp, gg),
+                batch,
+                *arrays,
+            )
+            gks = [
+                _out(_batch_sum(gk, batch), kt) if wanted else None
+                for gk, kt, wanted in zip(got, knots_t, ctx.needs_input_grad[3:])
+            ]
+        return (_out(gc, ctrl), _out(gx, x), None, *gks)
 
 
 def tensor_bspline_eval(knots, control_points, x, degrees):
     """``S(x)`` of the tensor-product B-spline in ``N`` variables (``knots`` a sequence of ``N``
     1-D arrays, ``degrees`` of ``N`` ints) with coefficients ``control_points``
     (``(..., n_1, ..., n_N, dim)``) at the points ``x`` (``(m, N)`` or ``(..., m, N)``):
-    ``(..., m, dim)``; differentiable with respect to the coefficients and ``x``."""
+    ``(..., m, dim)``; differentiable with respect to the coefficients, ``x`` and ``knots``
+    (the interior knots of each variable; the ``degree + 1`` first and last are held fixed)."""
     name = "tensor_bspline_eval"
     ctrl = _tensor(control_points, "control_points", name)
     x = _tensor(x, "x", name)
-    knots = [_constant(k, "the knots", name) for k in knots]
-    return _TensorSpline.apply(ctrl, x, knots, [int(d) for d in degrees])
+    knots = [_knots(k, "the knots", name) for k in knots]
+    return _TensorSpline.apply(ctrl, x, tuple(int(d) for d in degrees), *knots)
 
 
 # -- fits ----------------------------------------------------------------------------------------

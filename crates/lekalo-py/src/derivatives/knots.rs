@@ -1,12 +1,17 @@
-//! The derivatives of B-spline curve and surface evaluation with respect to the knots
-//! (`lekalo::BSplineCurve::eval_batch_knot_jvp` and its twins, `docs/theory/derivatives.md`,
-//! "Knots"), NumPy in and out, with the arguments of the coefficient derivatives beside them.
+//! The derivatives of B-spline and NURBS curve, B-spline surface and tensor-spline evaluation
+//! with respect to the knots (`lekalo::BSplineCurve::eval_batch_knot_jvp` and its twins,
+//! `docs/theory/derivatives.md`, "Knots"), NumPy in and out, with the arguments of the
+//! coefficient derivatives beside them.
 
 use pyo3::prelude::*;
+use pyo3::types::PyTuple;
 
-use super::{cotangent_arg, curve, curve_at, data_of, pairs, same_shape, values_and_tangent};
+use super::{
+    cotangent_arg, curve, curve_at, data_of, nurbs, pairs, same_shape, tensor_points,
+    values_and_tangent,
+};
 use crate::convert::{array, check_size, floats, out_shape, IntArg};
-use crate::error::lib_err;
+use crate::error::{bad, lib_err};
 use crate::surfaces::bspline_surface_arg;
 
 /// Registers the functions of this module.
@@ -15,6 +20,10 @@ pub(super) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(bspline_curve_knot_vjp, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_surface_knot_jvp, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_surface_knot_vjp, m)?)?;
+    m.add_function(wrap_pyfunction!(nurbs_curve_knot_jvp, m)?)?;
+    m.add_function(wrap_pyfunction!(nurbs_curve_knot_vjp, m)?)?;
+    m.add_function(wrap_pyfunction!(tensor_bspline_knot_jvp, m)?)?;
+    m.add_function(wrap_pyfunction!(tensor_bspline_knot_vjp, m)?)?;
     Ok(())
 }
 
@@ -138,4 +147,147 @@ pub(crate) fn bspline_surface_knot_vjp<'py>(
         array(py, gu, &knots_shape(knots_u, "knots_u")?)?,
         array(py, gv, &knots_shape(knots_v, "knots_v")?)?,
     ))
+}
+
+/// Forward-mode derivative of NURBS curve evaluation with respect to the knots: returns
+/// `(values, tangent)`, `tangent = Σ_k knots_tangent[k] ∂C(t)/∂τ_k` (the interior knots only;
+/// the `degree + 1` first and last are held fixed), through the homogeneous curve and the
+/// quotient rule.
+#[pyfunction]
+#[pyo3(signature = (degree, knots, control, weights, t, knots_tangent))]
+pub(crate) fn nurbs_curve_knot_jvp<'py>(
+    py: Python<'py>,
+    degree: IntArg,
+    knots: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    weights: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    knots_tangent: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let degree = degree.count("degree")?;
+    let (_, c, ta) = curve_at(control, t, |ca| nurbs(degree, knots, ca, weights))?;
+    let n = check_size("t", &[ta.data().len(), c.dim()])?;
+    let shape = knots_shape(knots, "knots")?;
+    let dk = same_shape(Some(knots_tangent), "knots_tangent", &shape, "knots")?;
+    let (ts, dk) = (ta.data(), data_of(&dk).unwrap_or(&[]));
+    values_and_tangent(py, n, &out_shape(&ta, &[c.dim()]), |out, tan| {
+        c.eval_batch_knot_jvp(ts, dk, out, tan)
+    })
+}
+
+/// Reverse-mode derivative of NURBS curve evaluation with respect to the knots: for
+/// `cotangent` of shape `t.shape + (dim,)`, returns the knots' cotangent
+/// `Σ_i cotangent[i] · ∂C(t_i)/∂τ_k` (zero for the `degree + 1` first and last knots).
+#[pyfunction]
+#[pyo3(signature = (degree, knots, control, weights, t, cotangent))]
+pub(crate) fn nurbs_curve_knot_vjp<'py>(
+    py: Python<'py>,
+    degree: IntArg,
+    knots: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    weights: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    cotangent: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let degree = degree.count("degree")?;
+    let (_, c, ta) = curve_at(control, t, |ca| nurbs(degree, knots, ca, weights))?;
+    let ga = cotangent_arg(cotangent, &out_shape(&ta, &[c.dim()]))?;
+    let g = data_of(&ga).unwrap_or(&[]);
+    let mut gk = vec![0.0; c.knots().len()];
+    let ts = ta.data();
+    py.detach(|| c.eval_batch_knot_vjp(ts, g, &mut gk))
+        .map_err(lib_err)?;
+    array(py, gk, &knots_shape(knots, "knots")?)
+}
+
+/// The entries of a sequence with one entry a variable (`what` names it).
+fn per_variable<'py>(
+    obj: &Bound<'py, PyAny>,
+    what: &str,
+    n: usize,
+) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    let items: Vec<Bound<'py, PyAny>> = obj
+        .try_iter()
+        .map_err(|_| {
+            bad(format!(
+                "{what}: expected a sequence with one entry per variable"
+            ))
+        })?
+        .collect::<PyResult<_>>()?;
+    if items.len() != n {
+        return Err(bad(format!(
+            "{what}: {} entries for {n} variables; give one per variable",
+            items.len()
+        )));
+    }
+    Ok(items)
+}
+
+/// Forward-mode derivative of tensor-spline evaluation `TensorBSpline(t, c, k)(x)` with respect
+/// to the knots of each variable: returns `(values, tangent)`, each `x.shape[:-1] + trailing`,
+/// `tangent = Σ_a Σ_k t_tangent[a][k] ∂S/∂t[a][k]`; `t_tangent` has one entry a variable, an
+/// array shaped as `t[a]` or `None` (that variable's knots held fixed). Each variable's
+/// `k[a] + 1` first and last knots are held fixed.
+#[pyfunction]
+#[pyo3(signature = (t, c, k, x, t_tangent))]
+pub(crate) fn tensor_bspline_knot_jvp<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    c: &Bound<'py, PyAny>,
+    k: &Bound<'py, PyAny>,
+    x: &Bound<'py, PyAny>,
+    t_tangent: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let (s, trailing, xa, lead) = tensor_points(t, c, k, x)?;
+    let items = per_variable(t_tangent, "t_tangent", s.n_vars())?;
+    let tangents = items
+        .iter()
+        .zip(s.knots())
+        .enumerate()
+        .map(|(a, (item, kv))| {
+            let what = format!("t_tangent[{a}]");
+            same_shape(Some(item), &what, &[kv.len()], &format!("t[{a}]"))
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let tangents: Vec<Option<&[f64]>> = tangents.iter().map(data_of).collect();
+    let len = lead.iter().product::<usize>() * s.dim();
+    let xs = xa.data();
+    values_and_tangent(
+        py,
+        len,
+        &[lead.as_slice(), &trailing].concat(),
+        |out, tan| s.eval_batch_knot_jvp(xs, &tangents, out, tan),
+    )
+}
+
+/// Reverse-mode derivative of tensor-spline evaluation with respect to the knots: for
+/// `cotangent` of shape `x.shape[:-1] + trailing`, returns a tuple of the `N` knot
+/// cotangents, shaped as `t[a]` (zero for each variable's `k[a] + 1` first and last knots).
+#[pyfunction]
+#[pyo3(signature = (t, c, k, x, cotangent))]
+pub(crate) fn tensor_bspline_knot_vjp<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    c: &Bound<'py, PyAny>,
+    k: &Bound<'py, PyAny>,
+    x: &Bound<'py, PyAny>,
+    cotangent: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let (s, trailing, xa, lead) = tensor_points(t, c, k, x)?;
+    let want = [lead.as_slice(), &trailing].concat();
+    let ga = same_shape(Some(cotangent), "cotangent", &want, "the values")?;
+    let g = data_of(&ga).unwrap_or(&[]);
+    let mut gk: Vec<Vec<f64>> = s.knots().iter().map(|kv| vec![0.0; kv.len()]).collect();
+    let mut bufs: Vec<Option<&mut [f64]>> = gk.iter_mut().map(|b| Some(b.as_mut_slice())).collect();
+    let xs = xa.data();
+    py.detach(|| s.eval_batch_knot_vjp(xs, g, &mut bufs))
+        .map_err(lib_err)?;
+    let arrays = gk
+        .into_iter()
+        .map(|b| {
+            let len = b.len();
+            array(py, b, &[len])
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    PyTuple::new(py, arrays)
 }

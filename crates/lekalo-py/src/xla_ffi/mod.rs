@@ -19,7 +19,8 @@
 //!   `ClosestParameters`);
 //! - `surface`: tensor-product B-spline surfaces, with respect to the knots, the net and
 //!   `(u, v)`;
-//! - `tensor`: tensor-product B-splines in `N` variables, with respect to the net and the points.
+//! - `tensor`: tensor-product B-splines in `N` variables, with respect to the knots of each
+//!   direction, the net and the points.
 //!
 //! Batching (`jax.vmap`): every argument and result may carry the same leading batch axes (the
 //! layout of `vmap_method="broadcast_all"`); a handler runs the kernel once a batch element.

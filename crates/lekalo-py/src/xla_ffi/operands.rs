@@ -106,10 +106,15 @@ pub(super) fn batch_sizes<'a>(
     Ok((batch, sizes))
 }
 
-/// The flags `with_<kind>` of a derivative target, `names` the attribute names (false when
+/// The flag `with_<kind>` of a derivative target, `name` its attribute name (false when
 /// absent: the values target has none).
+pub(super) fn flag(call: &Call<'_>, name: &str) -> bool {
+    call.attr(name).is_ok_and(|v| v != 0)
+}
+
+/// The flags `with_<kind>` of a derivative target, `names` the attribute names ([`flag`]).
 pub(super) fn flags<const K: usize>(call: &Call<'_>, names: [&str; K]) -> [bool; K] {
-    names.map(|name| call.attr(name).is_ok_and(|v| v != 0))
+    names.map(|name| flag(call, name))
 }
 
 /// The integer attribute `name` as a count (a degree, a number of variables).
@@ -125,18 +130,29 @@ pub(super) fn tangents<'c, 'a, const K: usize>(
     residuals: usize,
     present: [bool; K],
 ) -> Result<(&'c [In<'a>], [Option<&'c In<'a>>; K]), String> {
+    let (res, tangents) = tangents_of(args, residuals, &present)?;
+    let tangents = tangents
+        .try_into()
+        .map_err(|_| count_error("kinds", K, present.len()))?;
+    Ok((res, tangents))
+}
+
+/// [`tangents`] for a number of kinds known at run time (one a direction of a tensor spline).
+pub(super) fn tangents_of<'c, 'a>(
+    args: &'c [In<'a>],
+    residuals: usize,
+    present: &[bool],
+) -> Result<(&'c [In<'a>], Vec<Option<&'c In<'a>>>), String> {
     let want = residuals + present.iter().filter(|&&p| p).count();
     if args.len() != want {
         return Err(count_error("arguments", want, args.len()));
     }
-    let (res, mut rest) = args.split_at(residuals);
-    let tangents = present.map(|p| {
-        p.then(|| {
-            let (first, tail) = rest.split_at(1);
-            rest = tail;
-            &first[0]
-        })
-    });
+    let (res, rest) = args.split_at(residuals);
+    let mut rest = rest.iter();
+    let tangents = present
+        .iter()
+        .map(|&p| if p { rest.next() } else { None })
+        .collect();
     Ok((res, tangents))
 }
 
@@ -146,12 +162,25 @@ pub(super) fn cotangents<'c, 'a, const K: usize>(
     rets: &'c mut [Out<'a>],
     present: [bool; K],
 ) -> Result<[Option<&'c mut Out<'a>>; K], String> {
+    cotangents_of(rets, &present)?
+        .try_into()
+        .map_err(|_| count_error("kinds", K, present.len()))
+}
+
+/// [`cotangents`] for a number of kinds known at run time.
+pub(super) fn cotangents_of<'c, 'a>(
+    rets: &'c mut [Out<'a>],
+    present: &[bool],
+) -> Result<Vec<Option<&'c mut Out<'a>>>, String> {
     let want = present.iter().filter(|&&p| p).count();
     if rets.len() != want {
         return Err(count_error("results", want, rets.len()));
     }
     let mut rest = rets.iter_mut();
-    Ok(present.map(|p| if p { rest.next() } else { None }))
+    Ok(present
+        .iter()
+        .map(|&p| if p { rest.next() } else { None })
+        .collect())
 }
 
 /// The one result of a values or JVP target.

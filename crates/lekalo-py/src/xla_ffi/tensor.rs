@@ -1,29 +1,30 @@
 //! Evaluation of a tensor-product B-spline in `N` variables,
 //! `S(x) = Σ_k Π_a N_{k_a,p_a}(x_a) P_k`, as XLA FFI handlers, with its JVP and VJP with
-//! respect to the control net `P` and the points `x`
-//! (`docs/theory/derivatives.md#tensor-product-splines`):
+//! respect to the knots of each direction, the control net `P` and the points `x`
+//! (`docs/theory/derivatives.md#tensor-product-splines` and "Knots"):
 //!
 //! | target | arguments | attributes | results |
 //! |---|---|---|---|
 //! | `lekalo_tensor_eval` | `knots_0` … `knots_{N−1}` (1-D each), net `(n_0, …, n_{N−1}, dim)`, x `(m, N)` | `n_vars`, `degree_0` … `degree_{N−1}` | `S` `(m, dim)` |
-//! | `lekalo_tensor_jvp` | the same, [`Ṗ` as the net], [`ẋ` `(m, N)`] | the same, `with_control`, `with_point` | `Ṡ` `(m, dim)` |
-//! | `lekalo_tensor_vjp` | the same, `ḡ` `(m, dim)` | the same, `with_control`, `with_point` | [`P̄` as the net], [`x̄` `(m, N)`] |
+//! | `lekalo_tensor_jvp` | the same, [`τ̇⁰`] … [`τ̇ᴺ⁻¹`] (as the knots), [`Ṗ` as the net], [`ẋ` `(m, N)`] | the same, `with_knots_0` … `with_knots_{N−1}`, `with_control`, `with_point` | `Ṡ` `(m, dim)` |
+//! | `lekalo_tensor_vjp` | the same, `ḡ` `(m, dim)` | the same, `with_knots_0` … `with_knots_{N−1}`, `with_control`, `with_point` | [`τ̄⁰`] … [`τ̄ᴺ⁻¹`], [`P̄` as the net], [`x̄` `(m, N)`] |
 //!
 //! The bracketed buffers are present when the attribute of the same name is true; every buffer
 //! may have leading batch axes (the same for all). The values are
 //! [`TensorBSpline::eval_batch`]'s (P&T A2.2 a direction), the JVP
-//! [`TensorBSpline::eval_batch_jvp`]'s, the VJP [`TensorBSpline::eval_batch_vjp`]'s. For a
-//! batch element with few points against its net ([`in_place`]) the three are
-//! [`BorrowedTensor`]'s on the operand buffers themselves (the same numbers): no copy of the
-//! net, and only the knots and net points the points' cells read are checked.
+//! [`TensorBSpline::eval_batch_jvp`]'s plus [`TensorBSpline::eval_batch_knot_jvp`]'s, the VJP
+//! [`TensorBSpline::eval_batch_vjp`]'s and [`TensorBSpline::eval_batch_knot_vjp`]'s. For a
+//! batch element with few points against its net ([`in_place`]), and no knot derivative, the
+//! three are [`BorrowedTensor`]'s on the operand buffers themselves (the same numbers): no copy
+//! of the net, and only the knots and net points the points' cells read are checked.
 
 use lekalo::derivatives::BorrowedTensor;
 use lekalo::{Points, TensorBSpline};
 
 use super::abi::{Call, In};
 use super::operands::{
-    cotangents, count_attr, count_error, element, element_mut, flags, last_axis, single, tangents,
-    Batch,
+    cotangents_of, count_attr, count_error, element, element_mut, flag, last_axis, single,
+    tangents, tangents_of, Batch,
 };
 
 ffi_targets! {
@@ -34,8 +35,14 @@ ffi_targets! {
     vjp: vjp_body,
 }
 
-/// The attributes naming the tangents (JVP) and cotangents (VJP) present, in operand order.
-const KINDS: [&str; 2] = ["with_control", "with_point"];
+/// Which tangents (JVP) and cotangents (VJP) are present, in operand order: the attributes
+/// `with_knots_0` … `with_knots_{N−1}`, `with_control` and `with_point`.
+fn present(call: &Call<'_>, n: usize) -> Vec<bool> {
+    let knots = (0..n).map(|a| flag(call, &format!("with_knots_{a}")));
+    knots
+        .chain([flag(call, "with_control"), flag(call, "with_point")])
+        .collect()
+}
 
 /// The degrees, one a variable (attributes `n_vars`, `degree_0`, …).
 fn degrees(call: &Call<'_>) -> Result<Vec<usize>, String> {
@@ -162,73 +169,108 @@ fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
 
 fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
     let degrees = degrees(call)?;
-    let present = flags(call, KINDS);
+    let n = degrees.len();
+    let present = present(call, n);
     let Call { args, rets, .. } = call;
-    let (res, [dc, dx]) = tangents(args, degrees.len() + 2, present)?;
+    let (res, tangents) = tangents_of(args, n + 2, &present)?;
+    let (dk, [dc, dx]) = (&tangents[..n], [tangents[n], tangents[n + 1]]);
     let layout = Layout::of(res, &degrees)?;
     let (batch, (sn, sx)) = (&layout.batch, layout.net_and_points());
-    let n = degrees.len();
     let tangent = single(rets)?;
     let sv = batch.size("tangent", tangent.dims, 2)?;
+    for (a, d) in dk.iter().enumerate() {
+        if let Some(d) = d {
+            batch.expect(&format!("knot tangent {a}"), d.dims, 1, layout.sizes[a])?;
+        }
+    }
     if let Some(a) = dc {
         batch.expect("control-net tangent", a.dims, n + 1, sn)?;
     }
     if let Some(a) = dx {
         batch.expect("point tangent", a.dims, 2, sx)?;
     }
+    // the knot derivatives need the built spline
+    let knots = dk.iter().any(Option::is_some);
+    let small = !knots && layout.in_place(&degrees);
     // the values the JVP kernel also computes, not returned (XLA has them from the evaluation)
-    let small = layout.in_place(&degrees);
     let mut values = vec![0.0; if small { 0 } else { sv }];
+    let mut knot_part = vec![0.0; if knots { sv } else { 0 }];
     for b in 0..batch.count {
         let xs = element(res[n + 1].data, sx, b);
         let dc = dc.map(|a| element(a.data, sn, b));
         let dx = dx.map(|a| element(a.data, sx, b));
         let out = element_mut(tangent.data, sv, b);
-        let done = if small {
-            layout
-                .borrowed(&degrees, res, b)?
-                .eval_batch_jvp(xs, dc, dx, out)
-        } else {
-            let s = layout.spline(&degrees, res, b)?;
-            s.eval_batch_jvp(xs, dc, dx, &mut values, out)
-        };
-        done.map_err(|e| e.to_string())?;
+        if small {
+            let s = layout.borrowed(&degrees, res, b)?;
+            s.eval_batch_jvp(xs, dc, dx, out)
+                .map_err(|e| e.to_string())?;
+            continue;
+        }
+        let s = layout.spline(&degrees, res, b)?;
+        s.eval_batch_jvp(xs, dc, dx, &mut values, out)
+            .map_err(|e| e.to_string())?;
+        if knots {
+            let dk: Vec<Option<&[f64]>> = (dk.iter().enumerate())
+                .map(|(a, d)| d.map(|d| element(d.data, layout.sizes[a], b)))
+                .collect();
+            s.eval_batch_knot_jvp(xs, &dk, &mut values, &mut knot_part)
+                .map_err(|e| e.to_string())?;
+            for (o, k) in out.iter_mut().zip(&knot_part) {
+                *o += k;
+            }
+        }
     }
     Ok(())
 }
 
 fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
     let degrees = degrees(call)?;
-    let present = flags(call, KINDS);
-    let Call { args, rets, .. } = call;
     let n = degrees.len();
+    let present = present(call, n);
+    let Call { args, rets, .. } = call;
     let (res, [g]) = tangents(args, n + 2, [true])?;
     let g = g.ok_or("no cotangent")?;
     let layout = Layout::of(res, &degrees)?;
     let (batch, (sn, sx)) = (&layout.batch, layout.net_and_points());
     let sg = batch.size("cotangent", g.dims, 2)?;
-    let [mut gc, mut gx] = cotangents(rets, present)?;
+    let mut gk = cotangents_of(rets, &present)?;
+    let (mut gx, mut gc) = (gk.pop().flatten(), gk.pop().flatten());
+    for (a, c) in gk.iter().enumerate() {
+        if let Some(c) = c {
+            batch.expect(&format!("knot cotangent {a}"), c.dims, 1, layout.sizes[a])?;
+        }
+    }
     if let Some(a) = &gc {
         batch.expect("control-net cotangent", a.dims, n + 1, sn)?;
     }
     if let Some(a) = &gx {
         batch.expect("point cotangent", a.dims, 2, sx)?;
     }
-    let small = layout.in_place(&degrees);
+    // the knot derivatives need the built spline
+    let knots = gk.iter().any(Option::is_some);
+    let small = !knots && layout.in_place(&degrees);
     for b in 0..batch.count {
         let (xs, g) = (element(res[n + 1].data, sx, b), element(g.data, sg, b));
         let gc = gc.as_mut().map(|a| element_mut(a.data, sn, b));
         let gx = gx.as_mut().map(|a| element_mut(a.data, sx, b));
-        let done = if small {
+        if small {
             layout
                 .borrowed(&degrees, res, b)?
                 .eval_batch_vjp(xs, g, gc, gx)
-        } else {
-            layout
-                .spline(&degrees, res, b)?
-                .eval_batch_vjp(xs, g, gc, gx)
-        };
-        done.map_err(|e| e.to_string())?;
+                .map_err(|e| e.to_string())?;
+            continue;
+        }
+        let s = layout.spline(&degrees, res, b)?;
+        if knots {
+            let mut bufs: Vec<Option<&mut [f64]>> = (gk.iter_mut().enumerate())
+                .map(|(a, c)| c.as_mut().map(|c| element_mut(c.data, layout.sizes[a], b)))
+                .collect();
+            s.eval_batch_knot_vjp(xs, g, &mut bufs)
+                .map_err(|e| e.to_string())?;
+        }
+        if gc.is_some() || gx.is_some() {
+            s.eval_batch_vjp(xs, g, gc, gx).map_err(|e| e.to_string())?;
+        }
     }
     Ok(())
 }

@@ -18,10 +18,11 @@
 //!   [`BorrowedTensor`], the values, JVP and VJP of `curve.rs`, `nurbs.rs`, `surface.rs` and
 //!   `tensor.rs` for a few parameters on borrowed knots, control points (nets) and weights,
 //!   reading and checking only the spans used (no O(n) copy or validation a call).
-//! - `knots.rs`: [`crate::BSplineCurve::eval_batch_knot_jvp`],
-//!   [`crate::BSplineCurve::eval_batch_knot_vjp`] and the same for [`crate::BSplineSurface`]
-//!   (each direction's knots): the derivatives with respect to the knots, by differentiating
-//!   knot insertion.
+//! - `knots/`: the derivatives with respect to the knots, by differentiating knot insertion:
+//!   [`crate::BSplineCurve::eval_batch_knot_jvp`], [`crate::BSplineCurve::eval_batch_knot_vjp`]
+//!   and the same for [`crate::NurbsCurve`] (through its homogeneous curve and the quotient
+//!   rule), [`crate::BSplineSurface`] and [`crate::TensorBSpline`] (each direction's knots, one
+//!   kernel for both nets).
 //! - `nurbs.rs`: the same three for [`crate::NurbsCurve`], with respect to the control points,
 //!   the weights and the parameters.
 //! - `surface.rs`: the same three for [`crate::BSplineSurface`] at pairs `(u, v)`.
@@ -63,8 +64,6 @@ mod geometry;
 mod interpolant;
 mod interpolation;
 mod knots;
-#[cfg(test)]
-mod knots_tests;
 mod located;
 mod nurbs;
 mod power_sums;

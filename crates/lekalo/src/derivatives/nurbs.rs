@@ -29,7 +29,7 @@ pub(super) struct Rational {
     /// `C'` (`dim` numbers).
     pub(super) slope: Vec<f64>,
     /// `W(t)`.
-    weight: f64,
+    pub(super) weight: f64,
 }
 
 impl Rational {

@@ -282,7 +282,7 @@ impl TensorBSpline {
     }
 
     /// The number of points in `xs` (`N` coordinates each).
-    fn points_in(&self, xs: &[f64]) -> Result<usize> {
+    pub(super) fn points_in(&self, xs: &[f64]) -> Result<usize> {
         let n = self.n_vars();
         check_len(
             "points (a multiple of the number of directions)",

@@ -1,8 +1,9 @@
-//! Tests of `knots.rs`: the knot JVPs of curves and surfaces against central differences of
-//! evaluation in each interior knot (relative 1e-7), the VJPs their exact transposes (the
-//! adjoint identity to 1e-12 relative), the primal values bit for bit `eval_batch`, the
-//! one-sided conventions at multiple knots and at parameters on a knot, the fixed end knots,
-//! and a negative test for every error.
+//! Tests of `curve.rs`, and of `net.rs` on surfaces: the knot JVPs of curves and surfaces
+//! against central differences of evaluation in each interior knot (relative 1e-7), the VJPs
+//! their exact transposes (the adjoint identity to 1e-12 relative), the primal values bit for
+//! bit `eval_batch`, the one-sided conventions at multiple knots and at parameters on a knot,
+//! the fixed end knots, and a negative test for every error. The helpers here serve
+//! `nurbs_tests.rs` and `net_tests.rs` too.
 
 use proptest::prelude::*;
 
@@ -13,21 +14,21 @@ use crate::points::Points;
 use crate::surface::bspline::BSplineSurface;
 
 /// Relative tolerance of the finite-difference comparisons.
-const FD_RTOL: f64 = 1e-7;
+pub(super) const FD_RTOL: f64 = 1e-7;
 
 /// Step of the differences in a knot (knot gaps are at least 0.2 and parameters at least
 /// 0.004 from every knot, so the moved knot never crosses a parameter).
-const FD_STEP: f64 = 1e-6;
+pub(super) const FD_STEP: f64 = 1e-6;
 
 /// Relative tolerance of the adjoint identity `⟨ḡ, J τ̇⟩ = ⟨Jᵀ ḡ, τ̇⟩`.
-const ADJOINT_RTOL: f64 = 1e-12;
+pub(super) const ADJOINT_RTOL: f64 = 1e-12;
 
-fn max_abs(v: &[f64]) -> f64 {
+pub(super) fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| m.max(x.abs()))
 }
 
 /// `‖a − b‖_∞ ≤ rtol · max(‖b‖_∞, floor)`.
-fn assert_rel(a: &[f64], b: &[f64], rtol: f64, floor: f64, what: &str) {
+pub(super) fn assert_rel(a: &[f64], b: &[f64], rtol: f64, floor: f64, what: &str) {
     assert_eq!(a.len(), b.len(), "{what}: lengths");
     let err = a
         .iter()
@@ -40,12 +41,12 @@ fn assert_rel(a: &[f64], b: &[f64], rtol: f64, floor: f64, what: &str) {
     );
 }
 
-fn dot(a: &[f64], b: &[f64]) -> f64 {
+pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
 /// `|a − b| ≤ rtol · scale`, the scale the sum of the terms' magnitudes.
-fn assert_adjoint(a: f64, b: f64, scale: f64, what: &str) {
+pub(super) fn assert_adjoint(a: f64, b: f64, scale: f64, what: &str) {
     assert!(
         (a - b).abs() <= ADJOINT_RTOL * scale.max(1e-300),
         "{what}: {a:e} against {b:e} (scale {scale:e})"
@@ -55,7 +56,7 @@ fn assert_adjoint(a: f64, b: f64, scale: f64, what: &str) {
 /// Knots of a degree-`p` spline with `n` coefficients from gaps in `[0.2, 1]` (clamped or not),
 /// interior knots repeated by `mult` (each at most `p`), and parameters at least 2 % of a span
 /// from every knot.
-fn knots_and_params(
+pub(super) fn knots_and_params(
     p: usize,
     n: usize,
     clamped: bool,
@@ -90,7 +91,7 @@ fn knots_and_params(
     (knots, ts)
 }
 
-fn curve(p: usize, knots: Vec<f64>, ctrl: Vec<f64>, dim: usize) -> BSplineCurve {
+pub(super) fn curve(p: usize, knots: Vec<f64>, ctrl: Vec<f64>, dim: usize) -> BSplineCurve {
     BSplineCurve::new(p, knots, Points::from_raw(ctrl, dim)).unwrap()
 }
 
@@ -99,13 +100,13 @@ fn with_knots(c: &BSplineCurve, knots: Vec<f64>) -> BSplineCurve {
     curve(c.degree(), knots, ctrl, c.dim())
 }
 
-fn eval(c: &BSplineCurve, ts: &[f64]) -> Vec<f64> {
+pub(super) fn eval(c: &BSplineCurve, ts: &[f64]) -> Vec<f64> {
     let mut out = vec![0.0; ts.len() * c.dim()];
     c.eval_batch(ts, &mut out).unwrap();
     out
 }
 
-fn knot_jvp(c: &BSplineCurve, ts: &[f64], dk: &[f64]) -> (Vec<f64>, Vec<f64>) {
+pub(super) fn knot_jvp(c: &BSplineCurve, ts: &[f64], dk: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let mut out = vec![0.0; ts.len() * c.dim()];
     let mut tan = vec![0.0; ts.len() * c.dim()];
     c.eval_batch_knot_jvp(ts, dk, &mut out, &mut tan).unwrap();
@@ -128,7 +129,7 @@ fn difference(c: &BSplineCurve, ts: &[f64], k: usize, (a, b): (f64, f64)) -> Vec
 }
 
 /// The unit tangent of knot `k`.
-fn unit(len: usize, k: usize) -> Vec<f64> {
+pub(super) fn unit(len: usize, k: usize) -> Vec<f64> {
     let mut e = vec![0.0; len];
     e[k] = 1.0;
     e
