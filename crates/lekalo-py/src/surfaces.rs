@@ -39,6 +39,27 @@ pub(crate) fn bspline_surface_arg(
     BSplineSurface::new(degree_u, degree_v, ku, kv, p, size).map_err(lib_err)
 }
 
+/// A NURBS surface from its degrees, knots, net `(nu, nv, dim)` and weights `(nu, nv)`.
+pub(crate) fn nurbs_surface_arg(
+    (degree_u, degree_v): (usize, usize),
+    knots_u: &Bound<'_, PyAny>,
+    knots_v: &Bound<'_, PyAny>,
+    control: &Bound<'_, PyAny>,
+    weights: &Bound<'_, PyAny>,
+) -> PyResult<NurbsSurface> {
+    let (ku, kv, p, size) = knots_and_net(knots_u, knots_v, control)?;
+    let w = floats(weights, "weights")?;
+    if w.shape() != [size.0, size.1] {
+        return Err(bad(format!(
+            "weights: expected shape ({}, {}), got {:?}",
+            size.0,
+            size.1,
+            w.shape()
+        )));
+    }
+    NurbsSurface::new(degree_u, degree_v, ku, kv, p, w.data().to_vec(), size).map_err(lib_err)
+}
+
 /// A control net `(nu, nv, dim)` as points and its size.
 pub(crate) fn net_arg(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Points, (usize, usize))> {
     let a = floats(obj, what)?;
@@ -427,19 +448,8 @@ surface_common!(PyNurbsSurface, Nurbs, "nurbs_surface", knots PyNurbsCurve, {
     ) -> PyResult<Self> {
         let degree_u = degree_u.count("degree_u")?;
         let degree_v = degree_v.count("degree_v")?;
-        let (ku, kv, p, size) = knots_and_net(knots_u, knots_v, control)?;
-        let w = floats(weights, "weights")?;
-        if w.shape() != [size.0, size.1] {
-            return Err(bad(format!(
-                "weights: expected shape ({}, {}), got {:?}",
-                size.0,
-                size.1,
-                w.shape()
-            )));
-        }
         Ok(Self {
-            inner: NurbsSurface::new(degree_u, degree_v, ku, kv, p, w.data().to_vec(), size)
-                .map_err(lib_err)?,
+            inner: nurbs_surface_arg((degree_u, degree_v), knots_u, knots_v, control, weights)?,
         })
     }
 

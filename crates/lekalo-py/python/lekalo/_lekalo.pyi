@@ -602,6 +602,29 @@ def bspline_surface_knot_vjp(
     v: ArrayLike,
     cotangent: ArrayLike,
 ) -> Tuple[Array, Array]: ...
+def nurbs_surface_knot_jvp(
+    degree_u: int,
+    degree_v: int,
+    knots_u: ArrayLike,
+    knots_v: ArrayLike,
+    control: ArrayLike,
+    weights: ArrayLike,
+    u: ArrayLike,
+    v: ArrayLike,
+    knots_u_tangent: Optional[ArrayLike] = None,
+    knots_v_tangent: Optional[ArrayLike] = None,
+) -> Tuple[Array, Array]: ...
+def nurbs_surface_knot_vjp(
+    degree_u: int,
+    degree_v: int,
+    knots_u: ArrayLike,
+    knots_v: ArrayLike,
+    control: ArrayLike,
+    weights: ArrayLike,
+    u: ArrayLike,
+    v: ArrayLike,
+    cotangent: ArrayLike,
+) -> Tuple[Array, Array]: ...
 def bspline_surface_linearize(
     degree_u: int,
     degree_v: int,

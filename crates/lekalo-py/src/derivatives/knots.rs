@@ -1,4 +1,4 @@
-//! The derivatives of B-spline and NURBS curve, B-spline surface and tensor-spline evaluation
+//! The derivatives of B-spline and NURBS curve and surface and tensor-spline evaluation
 //! with respect to the knots (`lekalo::BSplineCurve::eval_batch_knot_jvp` and its twins,
 //! `docs/theory/derivatives.md`, "Knots"), NumPy in and out, with the arguments of the
 //! coefficient derivatives beside them.
@@ -12,7 +12,7 @@ use super::{
 };
 use crate::convert::{array, check_size, floats, out_shape, IntArg};
 use crate::error::{bad, lib_err};
-use crate::surfaces::bspline_surface_arg;
+use crate::surfaces::{bspline_surface_arg, nurbs_surface_arg};
 
 /// Registers the functions of this module.
 pub(super) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -22,6 +22,8 @@ pub(super) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(bspline_surface_knot_vjp, m)?)?;
     m.add_function(wrap_pyfunction!(nurbs_curve_knot_jvp, m)?)?;
     m.add_function(wrap_pyfunction!(nurbs_curve_knot_vjp, m)?)?;
+    m.add_function(wrap_pyfunction!(nurbs_surface_knot_jvp, m)?)?;
+    m.add_function(wrap_pyfunction!(nurbs_surface_knot_vjp, m)?)?;
     m.add_function(wrap_pyfunction!(tensor_bspline_knot_jvp, m)?)?;
     m.add_function(wrap_pyfunction!(tensor_bspline_knot_vjp, m)?)?;
     Ok(())
@@ -198,6 +200,74 @@ pub(crate) fn nurbs_curve_knot_vjp<'py>(
     py.detach(|| c.eval_batch_knot_vjp(ts, g, &mut gk))
         .map_err(lib_err)?;
     array(py, gk, &knots_shape(knots, "knots")?)
+}
+
+/// Forward-mode derivative of NURBS surface evaluation at `(u, v)` with respect to the knots of
+/// each direction: returns `(values, tangent)` as `bspline_surface_knot_jvp` does, through the
+/// homogeneous net `(w P, w)` and the quotient rule (`weights` of shape `(nu, nv)`).
+#[pyfunction]
+#[pyo3(signature = (degree_u, degree_v, knots_u, knots_v, control, weights, u, v,
+                    knots_u_tangent = None, knots_v_tangent = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn nurbs_surface_knot_jvp<'py>(
+    py: Python<'py>,
+    degree_u: IntArg,
+    degree_v: IntArg,
+    knots_u: &Bound<'py, PyAny>,
+    knots_v: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    weights: &Bound<'py, PyAny>,
+    u: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+    knots_u_tangent: Option<&Bound<'py, PyAny>>,
+    knots_v_tangent: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let degrees = (degree_u.count("degree_u")?, degree_v.count("degree_v")?);
+    let s = nurbs_surface_arg(degrees, knots_u, knots_v, control, weights)?;
+    let (uv, shape) = pairs(u, v)?;
+    let dim = s.dim();
+    let n = check_size("u", &[uv.len(), dim])?;
+    let (su, sv) = (
+        knots_shape(knots_u, "knots_u")?,
+        knots_shape(knots_v, "knots_v")?,
+    );
+    let du = same_shape(knots_u_tangent, "knots_u_tangent", &su, "knots_u")?;
+    let dv = same_shape(knots_v_tangent, "knots_v_tangent", &sv, "knots_v")?;
+    let (du, dv) = (data_of(&du), data_of(&dv));
+    values_and_tangent(py, n, &[shape.as_slice(), &[dim]].concat(), |out, tan| {
+        s.eval_batch_knot_jvp(&uv, du, dv, out, tan)
+    })
+}
+
+/// Reverse-mode derivative of NURBS surface evaluation with respect to the knots: for
+/// `cotangent` of shape `u.shape + (dim,)`, returns `(knots_u_cotangent, knots_v_cotangent)`.
+#[pyfunction]
+#[pyo3(signature = (degree_u, degree_v, knots_u, knots_v, control, weights, u, v, cotangent))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn nurbs_surface_knot_vjp<'py>(
+    py: Python<'py>,
+    degree_u: IntArg,
+    degree_v: IntArg,
+    knots_u: &Bound<'py, PyAny>,
+    knots_v: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    weights: &Bound<'py, PyAny>,
+    u: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+    cotangent: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let degrees = (degree_u.count("degree_u")?, degree_v.count("degree_v")?);
+    let s = nurbs_surface_arg(degrees, knots_u, knots_v, control, weights)?;
+    let (uv, shape) = pairs(u, v)?;
+    let ga = cotangent_arg(cotangent, &[shape.as_slice(), &[s.dim()]].concat())?;
+    let g = data_of(&ga).unwrap_or(&[]);
+    let (mut gu, mut gv) = (vec![0.0; s.knots_u().len()], vec![0.0; s.knots_v().len()]);
+    py.detach(|| s.eval_batch_knot_vjp(&uv, g, Some(&mut gu), Some(&mut gv)))
+        .map_err(lib_err)?;
+    Ok((
+        array(py, gu, &knots_shape(knots_u, "knots_u")?)?,
+        array(py, gv, &knots_shape(knots_v, "knots_v")?)?,
+    ))
 }
 
 /// The entries of a sequence with one entry a variable (`what` names it).

@@ -1,6 +1,6 @@
 //! JVP and VJP of batch evaluation with respect to the knots, for B-spline and NURBS curves,
-//! B-spline surfaces and `N`-variate tensor-product B-splines (`docs/theory/derivatives.md`,
-//! "Knots").
+//! B-spline and NURBS surfaces and `N`-variate tensor-product B-splines and NURBS
+//! (`docs/theory/derivatives.md`, "Knots").
 //!
 //! Moving one knot `τ_k` changes the spline `f = Σ_i c_i N_{i,p,τ}`; differentiating the
 //! identity between knot insertion into the moved and into the original knots (Boehm's
@@ -23,7 +23,10 @@
 //!   [`crate::TensorBSpline::eval_batch_knot_jvp`] and `_vjp`: one kernel for a net in `N`
 //!   directions (a surface is the net of two), the formula along one direction on the
 //!   coefficients that the other directions' basis functions contract the net to;
-//! - `tests.rs`, `nurbs_tests.rs`, `net_tests.rs`: their tests.
+//! - `rational_net.rs`: [`crate::NurbsSurface::eval_batch_knot_jvp`] and `_vjp`, and
+//!   [`crate::TensorNurbs::eval_batch_knot_jvp`] and `_vjp`: the net kernel on the
+//!   homogeneous net, then the quotient rule, as for a NURBS curve;
+//! - `tests.rs`, `nurbs_tests.rs`, `net_tests.rs`, `rational_net_tests.rs`: their tests.
 //!
 //! Conventions (the derivation's, documented there):
 //! - only the interior knots `τ_{p+1} … τ_{n−1}` are differentiated: the `p + 1` first and last
@@ -44,6 +47,9 @@ mod net_tests;
 mod nurbs;
 #[cfg(test)]
 mod nurbs_tests;
+mod rational_net;
+#[cfg(test)]
+mod rational_net_tests;
 #[cfg(test)]
 mod tests;
 

@@ -68,9 +68,9 @@ fn along(s: &TensorBSpline, xs: &[f64], axis: usize, e: &[f64]) -> Vec<f64> {
 
 /// A spline in 1..=3 directions of degrees 1..=3 (each direction 1 to 3 spans), dimension
 /// 1..=2, clamped or not, points off its knots, knot tangents and a cotangent.
-type NetCase = (TensorBSpline, Vec<f64>, Vec<Vec<f64>>, Vec<f64>);
+pub(super) type NetCase = (TensorBSpline, Vec<f64>, Vec<Vec<f64>>, Vec<f64>);
 
-fn net_case() -> impl Strategy<Value = NetCase> {
+pub(super) fn net_case() -> impl Strategy<Value = NetCase> {
     (
         prop::collection::vec((1usize..=3, 0usize..3), 1..=3),
         1usize..=2,
