@@ -1,6 +1,7 @@
 //! IGES 5.3 (Initial Graphics Exchange Specification): rational B-spline curves (entity 126)
 //! and surfaces (entity 128), written and read; lines (entity 110), parametric spline curves
-//! (entity 112) and surfaces (entity 114) read as exact B-splines (`splines.rs`).
+//! (entity 112) and surfaces (entity 114) read as exact B-splines (`splines.rs`), circular and
+//! conic arcs (entities 100, 104) as exact NURBS (`conics.rs`).
 //!
 //! A file is 80-column records in five sections: Start (`S`), Global (`G`: delimiters, units,
 //! precision), Directory Entry (`D`: two records per entity), Parameter Data (`P`: the entity's
@@ -20,16 +21,18 @@
 //! | file | subject |
 //! |---|---|
 //! | `splines.rs` | entities 110, 112 and 114 as exact B-splines |
+//! | `conics.rs` | entities 100 (circular arc) and 104 (conic arc) as exact NURBS, and their tests |
 //! | `faces_write.rs` | faces written as trimmed surfaces (144 over 128, boundaries 142 with composite curves 102 of 126) |
 //! | `faces.rs` | trimmed (144) and bounded (143) surfaces with their boundaries (142, 141) and composite curves (102), and untrimmed independent surfaces, as faces ([`read_iges_faces`]) |
 
 //! | `matrix.rs` | transformation matrices (entity 124) and their chains, applied to the control points |
 //! | `matrix_tests.rs` | matrices applied, chained, in the file's unit, and refused |
 //! | `fields.rs` | the lexical layer: parameter fields split at the delimiters (Hollerith strings kept whole), reals, counts, the units of the Global section |
-//! | `read.rs` | [`read_iges`] and its limited and progress-reporting forms: the sections, the size limits, the entities 126 and 128 (and, through `splines.rs`, 110, 112, 114) as shapes |
+//! | `read.rs` | [`read_iges`] and its limited and progress-reporting forms: the sections, the size limits, the entities 126 and 128 (and, through `splines.rs` and `conics.rs`, 110, 112, 114, 100, 104) as shapes |
 //! | `write.rs` | [`IgesWriter`]: entities 126 and 128 as Directory Entry and Parameter Data records |
 //! | `tests.rs` | round trips, hostile files, size limits and progress of the reader |
 
+mod conics;
 mod faces;
 #[cfg(test)]
 mod faces_tests;

@@ -1,11 +1,12 @@
 //! Reading IGES: the sections of the file, the size limits, and the rational B-spline entities
-//! (126, 128; 110, 112, 114 through `splines.rs`) as shapes (IGES 5.3 §2, §4.23, §4.24).
+//! (126, 128; 110, 112, 114 through `splines.rs`; the arcs 100 and 104 through `conics.rs`) as
+//! shapes (IGES 5.3 §2, §4.3, §4.5, §4.23, §4.24).
 
 use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points, Progress};
 
 use super::faces::{self, Raw};
 use super::fields::{count, fields, real, unit};
-use super::{matrix, splines, IgesRead};
+use super::{conics, matrix, splines, IgesRead};
 use crate::error::{IoError, IoResult, Location};
 use crate::object::Object;
 use crate::shape::{Shape, Surface};
@@ -274,12 +275,15 @@ pub(super) fn read_entities(
             .and_then(|s| s.trim().parse().ok())
             .unwrap_or(0);
         let keep = topology && matches!(ty.as_str(), "102" | "141" | "142" | "143" | "144");
-        if !keep && !matches!(ty.as_str(), "110" | "112" | "114" | "126" | "128") {
+        if !keep
+            && !matches!(
+                ty.as_str(),
+                "100" | "104" | "110" | "112" | "114" | "126" | "128"
+            )
+        {
             if matches!(
                 ty.as_str(),
-                "100"
-                    | "102"
-                    | "104"
+                "102"
                     | "106"
                     | "108"
                     | "118"
@@ -300,7 +304,8 @@ pub(super) fn read_entities(
                 skipped.push(StepSkipped {
                     id: seq,
                     entity: format!("IGES entity {ty}"),
-                    reason: "not read (lekalo reads entities 110, 112, 114, 126 and 128)".into(),
+                    reason: "not read (lekalo reads entities 100, 104, 110, 112, 114, 126 and 128)"
+                        .into(),
                 });
             }
             continue;
@@ -385,9 +390,13 @@ pub(super) fn read_entities(
             );
             continue;
         }
-        if ty == "110" || ty == "112" || ty == "114" {
+        if matches!(ty.as_str(), "100" | "104" | "110" | "112" | "114") {
             let num = |k: usize| real_at(&f, k);
-            let shape = if ty == "110" {
+            let shape = if ty == "100" {
+                conics::circular_arc(&num, unit_mm)
+            } else if ty == "104" {
+                conics::conic_arc(&num, unit_mm)
+            } else if ty == "110" {
                 splines::line(&num, unit_mm)
             } else if ty == "112" {
                 splines::spline_curve(&num, f.len(), unit_mm)
