@@ -390,13 +390,30 @@ pub(super) fn read_entities(
             );
             continue;
         }
-        if matches!(ty.as_str(), "100" | "104" | "110" | "112" | "114") {
+        if ty == "100" || ty == "104" {
+            // the numbers are syntax (a missing one fails the file, as for every entity); an
+            // arc they do not describe is skipped with the reason, the rest of the file read
+            let v = (1..=if ty == "100" { 7 } else { 11 })
+                .map(r)
+                .collect::<IoResult<Vec<f64>>>()?;
+            let arc = if ty == "100" {
+                conics::circular_arc(&v, unit_mm)
+            } else {
+                conics::conic_arc(&v, unit_mm)
+            };
+            match arc {
+                Ok(shape) => shapes.push((seq, place(shape, motion.as_ref()).map_err(lib)?)),
+                Err(reason) => skipped.push(StepSkipped {
+                    id: seq,
+                    entity: format!("IGES entity {ty}"),
+                    reason,
+                }),
+            }
+            continue;
+        }
+        if matches!(ty.as_str(), "110" | "112" | "114") {
             let num = |k: usize| real_at(&f, k);
-            let shape = if ty == "100" {
-                conics::circular_arc(&num, unit_mm)
-            } else if ty == "104" {
-                conics::conic_arc(&num, unit_mm)
-            } else if ty == "110" {
+            let shape = if ty == "110" {
                 splines::line(&num, unit_mm)
             } else if ty == "112" {
                 splines::spline_curve(&num, f.len(), unit_mm)
