@@ -454,8 +454,18 @@ fn tensor_points<'py>(
     Vec<usize>,
 )> {
     let (s, trailing) = crate::tensor::tensor_arg(t, c, k)?;
+    let (xa, lead) = points_of(x, s.n_vars(), s.dim())?;
+    Ok((s, trailing, xa, lead))
+}
+
+/// The points `x` (`(..., N)`) of a spline in `N` variables with values of `dim` numbers, and
+/// their leading shape (the values' count checked against the size limit).
+fn points_of<'py>(
+    x: &Bound<'py, PyAny>,
+    n: usize,
+    dim: usize,
+) -> PyResult<(FloatArray<'py>, Vec<usize>)> {
     let xa = floats(x, "x")?;
-    let n = s.n_vars();
     let shape = xa.shape().to_vec();
     if shape.last() != Some(&n) {
         return Err(bad(format!(
@@ -463,8 +473,8 @@ fn tensor_points<'py>(
         )));
     }
     let lead = shape[..shape.len() - 1].to_vec();
-    check_size("x", &[lead.iter().product(), s.dim()])?;
-    Ok((s, trailing, xa, lead))
+    check_size("x", &[lead.iter().product(), dim])?;
+    Ok((xa, lead))
 }
 
 /// Forward-mode derivative of tensor-spline evaluation `TensorBSpline(t, c, k)(x)` at the

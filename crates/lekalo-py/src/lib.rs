@@ -10,7 +10,8 @@
 //! - errors: `error` (`lekalo.Error`, with `lekalo.InputError`, a `ValueError`, and
 //!   `lekalo.NumericalError`, a `numpy.linalg.LinAlgError`);
 //! - classes: `curves` (their calculus in `calculus`), `surfaces`, `tensor` (N variables,
-//!   SciPy's `NdBSpline`; `tensor_values`: SciPy's `(t, c, k)` arrays evaluated in place),
+//!   SciPy's `NdBSpline`; `tensor_nurbs`: its rational twin; `tensor_values`: SciPy's
+//!   `(t, c, k)` arrays evaluated in place),
 //!   `interp` (interpolation, Hermite; SciPy's Hermite slopes in `slopes`), `pp`, `blend`; knot insertion into periodic splines given as arrays: `periodic`;
 //! - fitting: `fit` (SciPy-named `make_*` functions and `fit_*` with reports); `sphere` (the
 //!   bicubic splines on the sphere of SciPy's three `*SphereBivariateSpline` classes);
@@ -48,6 +49,7 @@ mod surfaces;
 mod tck;
 mod tensor;
 mod tensor_fit;
+mod tensor_nurbs;
 mod tensor_values;
 mod words;
 mod xla_ffi;
@@ -72,6 +74,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<pp::PyPiecewisePolynomial>()?;
     m.add_class::<pp::PyPpSpace>()?;
     m.add_class::<tensor::PyTensorBSpline>()?;
+    m.add_class::<tensor_nurbs::PyTensorNurbs>()?;
     m.add_function(wrap_pyfunction!(objects::from_json, m)?)?;
     m.add_function(wrap_pyfunction!(faces::read_step, m)?)?;
     m.add_function(wrap_pyfunction!(faces::read_iges, m)?)?;

@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 use super::{
-    cotangent_arg, curve, curve_at, data_of, nurbs, pairs, same_shape, tensor_points,
+    cotangent_arg, curve, curve_at, data_of, nurbs, pairs, points_of, same_shape, tensor_points,
     values_and_tangent,
 };
 use crate::convert::{array, check_size, floats, out_shape, IntArg};
@@ -26,6 +26,8 @@ pub(super) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(nurbs_surface_knot_vjp, m)?)?;
     m.add_function(wrap_pyfunction!(tensor_bspline_knot_jvp, m)?)?;
     m.add_function(wrap_pyfunction!(tensor_bspline_knot_vjp, m)?)?;
+    m.add_function(wrap_pyfunction!(tensor_nurbs_knot_jvp, m)?)?;
+    m.add_function(wrap_pyfunction!(tensor_nurbs_knot_vjp, m)?)?;
     Ok(())
 }
 
@@ -309,16 +311,7 @@ pub(crate) fn tensor_bspline_knot_jvp<'py>(
     t_tangent: &Bound<'py, PyAny>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
     let (s, trailing, xa, lead) = tensor_points(t, c, k, x)?;
-    let items = per_variable(t_tangent, "t_tangent", s.n_vars())?;
-    let tangents = items
-        .iter()
-        .zip(s.knots())
-        .enumerate()
-        .map(|(a, (item, kv))| {
-            let what = format!("t_tangent[{a}]");
-            same_shape(Some(item), &what, &[kv.len()], &format!("t[{a}]"))
-        })
-        .collect::<PyResult<Vec<_>>>()?;
+    let tangents = knot_tangents(t_tangent, s.knots())?;
     let tangents: Vec<Option<&[f64]>> = tangents.iter().map(data_of).collect();
     let len = lead.iter().product::<usize>() * s.dim();
     let xs = xa.data();
@@ -352,6 +345,29 @@ pub(crate) fn tensor_bspline_knot_vjp<'py>(
     let xs = xa.data();
     py.detach(|| s.eval_batch_knot_vjp(xs, g, &mut bufs))
         .map_err(lib_err)?;
+    knot_arrays(py, gk)
+}
+
+/// The knot tangents of `t_tangent`: one entry a variable, an array shaped as that variable's
+/// knots or `None`.
+fn knot_tangents<'py>(
+    t_tangent: &Bound<'py, PyAny>,
+    knots: &[lekalo::KnotVector],
+) -> PyResult<Vec<Option<crate::convert::FloatArray<'py>>>> {
+    let items = per_variable(t_tangent, "t_tangent", knots.len())?;
+    items
+        .iter()
+        .zip(knots)
+        .enumerate()
+        .map(|(a, (item, kv))| {
+            let what = format!("t_tangent[{a}]");
+            same_shape(Some(item), &what, &[kv.len()], &format!("t[{a}]"))
+        })
+        .collect()
+}
+
+/// The knot cotangents as a tuple of `N` arrays.
+fn knot_arrays<'py>(py: Python<'py>, gk: Vec<Vec<f64>>) -> PyResult<Bound<'py, PyTuple>> {
     let arrays = gk
         .into_iter()
         .map(|b| {
@@ -360,4 +376,59 @@ pub(crate) fn tensor_bspline_knot_vjp<'py>(
         })
         .collect::<PyResult<Vec<_>>>()?;
     PyTuple::new(py, arrays)
+}
+
+/// Forward-mode derivative of `TensorNurbs(t, c, k, w)(x)` with respect to the knots of each
+/// variable: returns `(values, tangent)` as `tensor_bspline_knot_jvp` does, through the
+/// homogeneous spline `(w c, w)` and the quotient rule.
+#[pyfunction]
+#[pyo3(signature = (t, c, k, w, x, t_tangent))]
+pub(crate) fn tensor_nurbs_knot_jvp<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    c: &Bound<'py, PyAny>,
+    k: &Bound<'py, PyAny>,
+    w: &Bound<'py, PyAny>,
+    x: &Bound<'py, PyAny>,
+    t_tangent: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let (s, trailing) = crate::tensor_nurbs::tensor_nurbs_arg(t, c, k, w)?;
+    let (xa, lead) = points_of(x, s.n_vars(), s.dim())?;
+    let tangents = knot_tangents(t_tangent, s.knots())?;
+    let tangents: Vec<Option<&[f64]>> = tangents.iter().map(data_of).collect();
+    let len = lead.iter().product::<usize>() * s.dim();
+    let xs = xa.data();
+    values_and_tangent(
+        py,
+        len,
+        &[lead.as_slice(), &trailing].concat(),
+        |out, tan| s.eval_batch_knot_jvp(xs, &tangents, out, tan),
+    )
+}
+
+/// Reverse-mode derivative of `TensorNurbs(t, c, k, w)(x)` with respect to the knots: for
+/// `cotangent` of shape `x.shape[:-1] + trailing`, returns a tuple of the `N` knot
+/// cotangents, shaped as `t[a]` (zero for each variable's `k[a] + 1` first and last knots).
+#[pyfunction]
+#[pyo3(signature = (t, c, k, w, x, cotangent))]
+pub(crate) fn tensor_nurbs_knot_vjp<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    c: &Bound<'py, PyAny>,
+    k: &Bound<'py, PyAny>,
+    w: &Bound<'py, PyAny>,
+    x: &Bound<'py, PyAny>,
+    cotangent: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let (s, trailing) = crate::tensor_nurbs::tensor_nurbs_arg(t, c, k, w)?;
+    let (xa, lead) = points_of(x, s.n_vars(), s.dim())?;
+    let want = [lead.as_slice(), &trailing].concat();
+    let ga = same_shape(Some(cotangent), "cotangent", &want, "the values")?;
+    let g = data_of(&ga).unwrap_or(&[]);
+    let mut gk: Vec<Vec<f64>> = s.knots().iter().map(|kv| vec![0.0; kv.len()]).collect();
+    let mut bufs: Vec<Option<&mut [f64]>> = gk.iter_mut().map(|b| Some(b.as_mut_slice())).collect();
+    let xs = xa.data();
+    py.detach(|| s.eval_batch_knot_vjp(xs, g, &mut bufs))
+        .map_err(lib_err)?;
+    knot_arrays(py, gk)
 }
