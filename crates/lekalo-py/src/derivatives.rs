@@ -465,13 +465,8 @@ fn points_of<'py>(
     n: usize,
     dim: usize,
 ) -> PyResult<(FloatArray<'py>, Vec<usize>)> {
-    let xa = floats(x, "x")?;
-    let shape = xa.shape().to_vec();
-    if shape.last() != Some(&n) {
-        return Err(bad(format!(
-            "x: shape {shape:?}; the last axis must hold the {n} coordinates of a point"
-        )));
-    }
+    let xa = crate::tensor::points_arg(x, n)?;
+    let shape = xa.shape();
     let lead = shape[..shape.len() - 1].to_vec();
     check_size("x", &[lead.iter().product(), dim])?;
     Ok((xa, lead))

@@ -42,6 +42,31 @@ impl PyTensorBSpline {
     }
 }
 
+/// The knot vectors as a tuple of 1-D arrays, one per variable.
+pub(crate) fn knot_tuple<'py>(
+    py: Python<'py>,
+    knots: &[KnotVector],
+) -> PyResult<Bound<'py, PyTuple>> {
+    let arrays: Vec<Bound<'py, PyAny>> = knots
+        .iter()
+        .map(|k| crate::convert::vec_array(py, k.as_slice()))
+        .collect();
+    PyTuple::new(py, arrays)
+}
+
+/// The points `x` of a spline in `n` variables: an array whose last axis holds a point's `n`
+/// coordinates.
+pub(crate) fn points_arg<'py>(x: &Bound<'py, PyAny>, n: usize) -> PyResult<FloatArray<'py>> {
+    let xa = floats(x, "x")?;
+    let shape = xa.shape();
+    if shape.last() != Some(&n) {
+        return Err(bad(format!(
+            "x: shape {shape:?}; the last axis must hold the {n} coordinates of a point"
+        )));
+    }
+    Ok(xa)
+}
+
 /// Degrees from `k`: one integer for every variable, or one per variable.
 pub(crate) fn degrees_arg(k: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
     // a tuple or list is not tried as one integer first (the failed extraction builds an
@@ -238,13 +263,7 @@ impl PyTensorBSpline {
     /// The knot vectors, one 1-D array per variable.
     #[getter]
     fn t<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
-        let arrays: Vec<Bound<'py, PyAny>> = self
-            .inner
-            .knots()
-            .iter()
-            .map(|k| crate::convert::vec_array(py, k.as_slice()))
-            .collect();
-        PyTuple::new(py, arrays)
+        knot_tuple(py, self.inner.knots())
     }
 
     /// The coefficients, shape `(n_1, …, n_N, *trailing)`.
@@ -284,14 +303,8 @@ impl PyTensorBSpline {
         nu: Option<Vec<IntArg>>,
         extrapolate: bool,
     ) -> PyResult<Py<PyAny>> {
-        let n = self.inner.n_vars();
-        let xa = floats(x, "x")?;
+        let xa = points_arg(x, self.inner.n_vars())?;
         let shape = xa.shape();
-        if shape.last() != Some(&n) {
-            return Err(bad(format!(
-                "x: shape {shape:?}; the last axis must hold the {n} coordinates of a point"
-            )));
-        }
         let orders = self.orders(nu)?;
         let lead = &shape[..shape.len() - 1];
         let out_shape = self.out_shape(lead);

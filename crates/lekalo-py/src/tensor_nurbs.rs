@@ -8,9 +8,9 @@ use lekalo::{TensorBSpline, TensorNurbs};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{array, check_size, counts, filled, floats, vec_array, IntArg};
+use crate::convert::{array, check_size, counts, filled, floats, IntArg};
 use crate::error::{bad, named};
-use crate::tensor::{axes_arg, tensor_arg, PyTensorBSpline};
+use crate::tensor::{axes_arg, knot_tuple, points_arg, tensor_arg, PyTensorBSpline};
 
 /// A rational tensor-product spline in `N` variables.
 #[pyclass(name = "TensorNurbs", module = "lekalo", frozen)]
@@ -82,13 +82,7 @@ impl PyTensorNurbs {
     /// The knot vectors, one 1-D array per variable.
     #[getter]
     fn t<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
-        let arrays: Vec<Bound<'py, PyAny>> = self
-            .inner
-            .knots()
-            .iter()
-            .map(|k| vec_array(py, k.as_slice()))
-            .collect();
-        PyTuple::new(py, arrays)
+        knot_tuple(py, self.inner.knots())
     }
 
     /// The Euclidean coefficients, shape `(n_1, …, n_N, *trailing)`.
@@ -133,13 +127,8 @@ impl PyTensorNurbs {
         nu: Option<Vec<IntArg>>,
     ) -> PyResult<Py<PyAny>> {
         let n = self.inner.n_vars();
-        let xa = floats(x, "x")?;
+        let xa = points_arg(x, n)?;
         let shape = xa.shape();
-        if shape.last() != Some(&n) {
-            return Err(bad(format!(
-                "x: shape {shape:?}; the last axis must hold the {n} coordinates of a point"
-            )));
-        }
         let orders = match nu.map(|v| counts(&v, "nu")).transpose()? {
             Some(v) if v.len() != n => {
                 return Err(bad(format!(

@@ -84,6 +84,108 @@ pub(crate) fn bspline_curve_knot_vjp<'py>(
     array(py, gk, &knots_shape(knots, "knots")?)
 }
 
+/// A surface whose batch evaluation has knot derivatives: the B-spline and the NURBS surface
+/// (`lekalo::BSplineSurface::eval_batch_knot_jvp`, `lekalo::NurbsSurface::eval_batch_knot_jvp`
+/// and their VJPs), so that one binding parses and presents for both.
+trait KnotSurface: Sync {
+    fn dim(&self) -> usize;
+    fn knot_lens(&self) -> (usize, usize);
+    fn knot_jvp(
+        &self,
+        uv: &[[f64; 2]],
+        du: Option<&[f64]>,
+        dv: Option<&[f64]>,
+        out: &mut [f64],
+        tan: &mut [f64],
+    ) -> lekalo::Result<()>;
+    fn knot_vjp(
+        &self,
+        uv: &[[f64; 2]],
+        g: &[f64],
+        gu: &mut [f64],
+        gv: &mut [f64],
+    ) -> lekalo::Result<()>;
+}
+
+macro_rules! knot_surface {
+    ($t:ty) => {
+        impl KnotSurface for $t {
+            fn dim(&self) -> usize {
+                <$t>::dim(self)
+            }
+            fn knot_lens(&self) -> (usize, usize) {
+                (self.knots_u().len(), self.knots_v().len())
+            }
+            fn knot_jvp(
+                &self,
+                uv: &[[f64; 2]],
+                du: Option<&[f64]>,
+                dv: Option<&[f64]>,
+                out: &mut [f64],
+                tan: &mut [f64],
+            ) -> lekalo::Result<()> {
+                self.eval_batch_knot_jvp(uv, du, dv, out, tan)
+            }
+            fn knot_vjp(
+                &self,
+                uv: &[[f64; 2]],
+                g: &[f64],
+                gu: &mut [f64],
+                gv: &mut [f64],
+            ) -> lekalo::Result<()> {
+                self.eval_batch_knot_vjp(uv, g, Some(gu), Some(gv))
+            }
+        }
+    };
+}
+knot_surface!(lekalo::BSplineSurface);
+knot_surface!(lekalo::NurbsSurface);
+
+/// The knot JVP of a surface at `(u, v)`: the tangents checked against the knots' shapes,
+/// `(values, tangent)` of shape `u.shape + (dim,)`.
+fn surface_knot_jvp<'py>(
+    py: Python<'py>,
+    s: &impl KnotSurface,
+    (knots_u, knots_v): (&Bound<'py, PyAny>, &Bound<'py, PyAny>),
+    (u, v): (&Bound<'py, PyAny>, &Bound<'py, PyAny>),
+    (du, dv): (Option<&Bound<'py, PyAny>>, Option<&Bound<'py, PyAny>>),
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let (uv, shape) = pairs(u, v)?;
+    let dim = s.dim();
+    let n = check_size("u", &[uv.len(), dim])?;
+    let (su, sv) = (
+        knots_shape(knots_u, "knots_u")?,
+        knots_shape(knots_v, "knots_v")?,
+    );
+    let du = same_shape(du, "knots_u_tangent", &su, "knots_u")?;
+    let dv = same_shape(dv, "knots_v_tangent", &sv, "knots_v")?;
+    let (du, dv) = (data_of(&du), data_of(&dv));
+    values_and_tangent(py, n, &[shape.as_slice(), &[dim]].concat(), |out, tan| {
+        s.knot_jvp(&uv, du, dv, out, tan)
+    })
+}
+
+/// The knot VJP of a surface: `(knots_u_cotangent, knots_v_cotangent)`, shaped as the knots.
+fn surface_knot_vjp<'py>(
+    py: Python<'py>,
+    s: &impl KnotSurface,
+    (knots_u, knots_v): (&Bound<'py, PyAny>, &Bound<'py, PyAny>),
+    (u, v): (&Bound<'py, PyAny>, &Bound<'py, PyAny>),
+    cotangent: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let (uv, shape) = pairs(u, v)?;
+    let ga = cotangent_arg(cotangent, &[shape.as_slice(), &[s.dim()]].concat())?;
+    let g = data_of(&ga).unwrap_or(&[]);
+    let (lu, lv) = s.knot_lens();
+    let (mut gu, mut gv) = (vec![0.0; lu], vec![0.0; lv]);
+    py.detach(|| s.knot_vjp(&uv, g, &mut gu, &mut gv))
+        .map_err(lib_err)?;
+    Ok((
+        array(py, gu, &knots_shape(knots_u, "knots_u")?)?,
+        array(py, gv, &knots_shape(knots_v, "knots_v")?)?,
+    ))
+}
+
 /// Forward-mode derivative of B-spline surface evaluation at `(u, v)` with respect to the knots
 /// of each direction: returns `(values, tangent)`, `tangent = Σ_k knots_u_tangent[k] ∂S/∂τᵘ_k +
 /// Σ_l knots_v_tangent[l] ∂S/∂τᵛ_l` (either tangent may be `None`; each direction's
@@ -104,22 +206,10 @@ pub(crate) fn bspline_surface_knot_jvp<'py>(
     knots_u_tangent: Option<&Bound<'py, PyAny>>,
     knots_v_tangent: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
-    let degree_u = degree_u.count("degree_u")?;
-    let degree_v = degree_v.count("degree_v")?;
-    let s = bspline_surface_arg((degree_u, degree_v), knots_u, knots_v, control)?;
-    let (uv, shape) = pairs(u, v)?;
-    let dim = s.dim();
-    let n = check_size("u", &[uv.len(), dim])?;
-    let (su, sv) = (
-        knots_shape(knots_u, "knots_u")?,
-        knots_shape(knots_v, "knots_v")?,
-    );
-    let du = same_shape(knots_u_tangent, "knots_u_tangent", &su, "knots_u")?;
-    let dv = same_shape(knots_v_tangent, "knots_v_tangent", &sv, "knots_v")?;
-    let (du, dv) = (data_of(&du), data_of(&dv));
-    values_and_tangent(py, n, &[shape.as_slice(), &[dim]].concat(), |out, tan| {
-        s.eval_batch_knot_jvp(&uv, du, dv, out, tan)
-    })
+    let degrees = (degree_u.count("degree_u")?, degree_v.count("degree_v")?);
+    let s = bspline_surface_arg(degrees, knots_u, knots_v, control)?;
+    let tangents = (knots_u_tangent, knots_v_tangent);
+    surface_knot_jvp(py, &s, (knots_u, knots_v), (u, v), tangents)
 }
 
 /// Reverse-mode derivative of B-spline surface evaluation with respect to the knots: for
@@ -138,19 +228,9 @@ pub(crate) fn bspline_surface_knot_vjp<'py>(
     v: &Bound<'py, PyAny>,
     cotangent: &Bound<'py, PyAny>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
-    let degree_u = degree_u.count("degree_u")?;
-    let degree_v = degree_v.count("degree_v")?;
-    let s = bspline_surface_arg((degree_u, degree_v), knots_u, knots_v, control)?;
-    let (uv, shape) = pairs(u, v)?;
-    let ga = cotangent_arg(cotangent, &[shape.as_slice(), &[s.dim()]].concat())?;
-    let g = data_of(&ga).unwrap_or(&[]);
-    let (mut gu, mut gv) = (vec![0.0; s.knots_u().len()], vec![0.0; s.knots_v().len()]);
-    py.detach(|| s.eval_batch_knot_vjp(&uv, g, Some(&mut gu), Some(&mut gv)))
-        .map_err(lib_err)?;
-    Ok((
-        array(py, gu, &knots_shape(knots_u, "knots_u")?)?,
-        array(py, gv, &knots_shape(knots_v, "knots_v")?)?,
-    ))
+    let degrees = (degree_u.count("degree_u")?, degree_v.count("degree_v")?);
+    let s = bspline_surface_arg(degrees, knots_u, knots_v, control)?;
+    surface_knot_vjp(py, &s, (knots_u, knots_v), (u, v), cotangent)
 }
 
 /// Forward-mode derivative of NURBS curve evaluation with respect to the knots: returns
@@ -226,19 +306,8 @@ pub(crate) fn nurbs_surface_knot_jvp<'py>(
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
     let degrees = (degree_u.count("degree_u")?, degree_v.count("degree_v")?);
     let s = nurbs_surface_arg(degrees, knots_u, knots_v, control, weights)?;
-    let (uv, shape) = pairs(u, v)?;
-    let dim = s.dim();
-    let n = check_size("u", &[uv.len(), dim])?;
-    let (su, sv) = (
-        knots_shape(knots_u, "knots_u")?,
-        knots_shape(knots_v, "knots_v")?,
-    );
-    let du = same_shape(knots_u_tangent, "knots_u_tangent", &su, "knots_u")?;
-    let dv = same_shape(knots_v_tangent, "knots_v_tangent", &sv, "knots_v")?;
-    let (du, dv) = (data_of(&du), data_of(&dv));
-    values_and_tangent(py, n, &[shape.as_slice(), &[dim]].concat(), |out, tan| {
-        s.eval_batch_knot_jvp(&uv, du, dv, out, tan)
-    })
+    let tangents = (knots_u_tangent, knots_v_tangent);
+    surface_knot_jvp(py, &s, (knots_u, knots_v), (u, v), tangents)
 }
 
 /// Reverse-mode derivative of NURBS surface evaluation with respect to the knots: for
@@ -260,16 +329,7 @@ pub(crate) fn nurbs_surface_knot_vjp<'py>(
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
     let degrees = (degree_u.count("degree_u")?, degree_v.count("degree_v")?);
     let s = nurbs_surface_arg(degrees, knots_u, knots_v, control, weights)?;
-    let (uv, shape) = pairs(u, v)?;
-    let ga = cotangent_arg(cotangent, &[shape.as_slice(), &[s.dim()]].concat())?;
-    let g = data_of(&ga).unwrap_or(&[]);
-    let (mut gu, mut gv) = (vec![0.0; s.knots_u().len()], vec![0.0; s.knots_v().len()]);
-    py.detach(|| s.eval_batch_knot_vjp(&uv, g, Some(&mut gu), Some(&mut gv)))
-        .map_err(lib_err)?;
-    Ok((
-        array(py, gu, &knots_shape(knots_u, "knots_u")?)?,
-        array(py, gv, &knots_shape(knots_v, "knots_v")?)?,
-    ))
+    surface_knot_vjp(py, &s, (knots_u, knots_v), (u, v), cotangent)
 }
 
 /// The entries of a sequence with one entry a variable (`what` names it).
