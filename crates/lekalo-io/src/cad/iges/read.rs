@@ -6,7 +6,7 @@ use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points, Pro
 
 use super::faces::{self, Raw};
 use super::fields::{count, fields, real, unit};
-use super::{conics, matrix, splines, IgesRead};
+use super::{conics, matrix, splines, swept, IgesRead};
 use crate::error::{IoError, IoResult, Location};
 use crate::object::Object;
 use crate::shape::{Shape, Surface};
@@ -14,6 +14,9 @@ use crate::step_read::{Skips, StepSkipped, SKIPPED_LISTED};
 
 /// Parameter `k` of an entity's fields as a real; the error names it and quotes what is
 /// written (a number beyond a double, `1.D+400`, or a word, `NaN`).
+/// Why a swept surface (120, 122) is not read when faces are.
+const SWEPT_IN_FACES: &str = "a swept surface (surface of revolution or tabulated cylinder) is read as a surface, not as the surface of a face: its NURBS parametrisation is not IGES's, so the curves of a boundary in its parameters would land elsewhere";
+
 fn real_at(f: &[String], k: usize) -> Result<f64, String> {
     let Some(text) = f.get(k) else {
         return Err(format!("parameter {k} is missing"));
@@ -222,6 +225,8 @@ pub(super) fn read_entities(
     };
     let mut shapes = Vec::new();
     let mut skipped = Vec::new();
+    // swept surfaces (120, 122), built from their curves after the loop
+    let mut sweeps = Vec::new();
     let entities = d.len() / 2;
     if entities > max_size {
         return Err(IoError::OverLimit {
@@ -278,7 +283,7 @@ pub(super) fn read_entities(
         if !keep
             && !matches!(
                 ty.as_str(),
-                "100" | "104" | "110" | "112" | "114" | "126" | "128"
+                "100" | "104" | "110" | "112" | "114" | "120" | "122" | "126" | "128"
             )
         {
             if matches!(
@@ -287,8 +292,6 @@ pub(super) fn read_entities(
                     | "106"
                     | "108"
                     | "118"
-                    | "120"
-                    | "122"
                     | "130"
                     | "140"
                     | "141"
@@ -304,7 +307,7 @@ pub(super) fn read_entities(
                 skipped.push(StepSkipped {
                     id: seq,
                     entity: format!("IGES entity {ty}"),
-                    reason: "not read (lekalo reads entities 100, 104, 110, 112, 114, 126 and 128)"
+                    reason: "not read (lekalo reads entities 100, 104, 110, 112, 114, 120, 122, 126 and 128)"
                         .into(),
                 });
             }
@@ -388,6 +391,24 @@ pub(super) fn read_entities(
                     matrix: !matches!(field(a, 6).as_str(), "" | "0"),
                 },
             );
+            continue;
+        }
+        if ty == "120" || ty == "122" {
+            // built once every curve is read: they point at curves anywhere in the file
+            let v = (1..=4).map(r).collect::<IoResult<Vec<f64>>>()?;
+            let sweep = if topology {
+                Err(SWEPT_IN_FACES.to_string())
+            } else {
+                swept::Sweep::from_parameters(&ty, &v, unit_mm)
+            };
+            match sweep {
+                Ok(sweep) => sweeps.push((seq, sweep, motion)),
+                Err(reason) => skipped.push(StepSkipped {
+                    id: seq,
+                    entity: format!("IGES entity {ty}"),
+                    reason,
+                }),
+            }
             continue;
         }
         if ty == "100" || ty == "104" {
@@ -528,6 +549,27 @@ pub(super) fn read_entities(
                 independent.push(seq);
             }
             shapes.push((seq, place(Shape::Surface(s), motion.as_ref()).map_err(lib)?));
+        }
+    }
+    if !sweeps.is_empty() {
+        let curves: std::collections::HashMap<u64, usize> = shapes
+            .iter()
+            .enumerate()
+            .filter(|(_, (_, s))| matches!(s, Shape::Curve(_)))
+            .map(|(k, (id, _))| (*id, k))
+            .collect();
+        for (seq, sweep, motion) in sweeps {
+            let built = sweep
+                .build(&shapes, &curves)
+                .and_then(|s| place(Shape::Surface(s), motion.as_ref()).map_err(|e| e.to_string()));
+            match built {
+                Ok(shape) => shapes.push((seq, shape)),
+                Err(reason) => skipped.push(StepSkipped {
+                    id: seq,
+                    entity: sweep.entity().into(),
+                    reason,
+                }),
+            }
         }
     }
     if progress.is_active() {
