@@ -13,6 +13,7 @@
 //! - `analytic.rs`: [`Placement`] and the elementary surfaces of CAD exchange (plane,
 //!   cylinder, cone, sphere, torus) as exact NURBS patches.
 //! - `revolution.rs`: surfaces of revolution and of linear extrusion of a NURBS curve, exact.
+//! - `ruled.rs`: the ruled surface between two NURBS curves, exact.
 //! - `power_patches.rs`: grids of polynomial patches in power form (IGES 114) as exact
 //!   B-splines.
 //! - `curvature.rs`: Gaussian, mean and principal curvatures ([`surface_curvature`]).
@@ -26,6 +27,7 @@ mod knot_ops;
 pub(crate) mod nurbs;
 mod power_patches;
 mod revolution;
+mod ruled;
 
 pub use analytic::{Placement, FULL_TURN};
 pub use any::{Direction, Surface};

@@ -233,7 +233,7 @@ impl Faces<'_> {
         } else if self.surfaces.contains_key(&id) {
             format!("its {what} D{id} is a surface, not a {what}")
         } else {
-            format!("its {what} D{id} is not an entity lekalo reads (100, 104, 110, 112, 114, 126, 128, 102), or not in the file")
+            format!("its {what} D{id} is not an entity lekalo reads (100, 104, 110, 112, 114, 126, 128, 102; swept surfaces 118, 120, 122 only outside faces), or not in the file")
         }
     }
 

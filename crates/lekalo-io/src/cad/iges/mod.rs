@@ -1,7 +1,7 @@
 //! IGES 5.3 (Initial Graphics Exchange Specification): rational B-spline curves (entity 126)
 //! and surfaces (entity 128), written and read; lines (entity 110), parametric spline curves
 //! (entity 112) and surfaces (entity 114) read as exact B-splines (`splines.rs`), circular and
-//! conic arcs (entities 100, 104) and swept surfaces (entities 120, 122) as exact NURBS
+//! conic arcs (entities 100, 104) and swept surfaces (entities 118, 120, 122) as exact NURBS
 //! (`conics.rs`, `swept.rs`).
 //!
 //! A file is 80-column records in five sections: Start (`S`), Global (`G`: delimiters, units,
@@ -23,7 +23,7 @@
 //! |---|---|
 //! | `splines.rs` | entities 110, 112 and 114 as exact B-splines |
 //! | `conics.rs` | entities 100 (circular arc) and 104 (conic arc) as exact NURBS, and their tests |
-//! | `swept.rs` | entities 120 (surface of revolution) and 122 (tabulated cylinder) as exact NURBS from the curves they point at, and their tests |
+//! | `swept.rs` | entities 118 (ruled surface), 120 (surface of revolution) and 122 (tabulated cylinder) as exact NURBS from the curves they point at, and their tests |
 //! | `faces_write.rs` | faces written as trimmed surfaces (144 over 128, boundaries 142 with composite curves 102 of 126) |
 //! | `faces.rs` | trimmed (144) and bounded (143) surfaces with their boundaries (142, 141) and composite curves (102), and untrimmed independent surfaces, as faces ([`read_iges_faces`]) |
 

@@ -14,8 +14,8 @@ use crate::step_read::{Skips, StepSkipped, SKIPPED_LISTED};
 
 /// Parameter `k` of an entity's fields as a real; the error names it and quotes what is
 /// written (a number beyond a double, `1.D+400`, or a word, `NaN`).
-/// Why a swept surface (120, 122) is not read when faces are.
-const SWEPT_IN_FACES: &str = "a swept surface (surface of revolution or tabulated cylinder) is read as a surface, not as the surface of a face: its NURBS parametrisation is not IGES's, so the curves of a boundary in its parameters would land elsewhere";
+/// Why a swept surface (118, 120, 122) is not read when faces are.
+const SWEPT_IN_FACES: &str = "a swept surface (ruled surface, surface of revolution or tabulated cylinder) is read as a surface, not as the surface of a face: its NURBS parametrisation is not IGES's, so the curves of a boundary in its parameters would land elsewhere";
 
 fn real_at(f: &[String], k: usize) -> Result<f64, String> {
     let Some(text) = f.get(k) else {
@@ -225,7 +225,7 @@ pub(super) fn read_entities(
     };
     let mut shapes = Vec::new();
     let mut skipped = Vec::new();
-    // swept surfaces (120, 122), built from their curves after the loop
+    // swept surfaces (118, 120, 122), built from their curves after the loop
     let mut sweeps = Vec::new();
     let entities = d.len() / 2;
     if entities > max_size {
@@ -283,7 +283,7 @@ pub(super) fn read_entities(
         if !keep
             && !matches!(
                 ty.as_str(),
-                "100" | "104" | "110" | "112" | "114" | "120" | "122" | "126" | "128"
+                "100" | "104" | "110" | "112" | "114" | "118" | "120" | "122" | "126" | "128"
             )
         {
             if matches!(
@@ -291,7 +291,6 @@ pub(super) fn read_entities(
                 "102"
                     | "106"
                     | "108"
-                    | "118"
                     | "130"
                     | "140"
                     | "141"
@@ -307,7 +306,7 @@ pub(super) fn read_entities(
                 skipped.push(StepSkipped {
                     id: seq,
                     entity: format!("IGES entity {ty}"),
-                    reason: "not read (lekalo reads entities 100, 104, 110, 112, 114, 120, 122, 126 and 128)"
+                    reason: "not read (lekalo reads entities 100, 104, 110, 112, 114, 118, 120, 122, 126 and 128)"
                         .into(),
                 });
             }
@@ -393,7 +392,7 @@ pub(super) fn read_entities(
             );
             continue;
         }
-        if ty == "120" || ty == "122" {
+        if ty == "118" || ty == "120" || ty == "122" {
             // built once every curve is read: they point at curves anywhere in the file
             let v = (1..=4).map(r).collect::<IoResult<Vec<f64>>>()?;
             let sweep = if topology {

@@ -1,5 +1,6 @@
-//! IGES swept surfaces as exact NURBS: the surface of revolution (entity 120, IGES 5.3 §4.18)
-//! and the tabulated cylinder (entity 122, §4.19). Both point at curves by their directory
+//! IGES swept surfaces as exact NURBS: the ruled surface (entity 118, IGES 5.3 §4.17), the
+//! surface of revolution (entity 120, §4.18) and the tabulated cylinder (entity 122, §4.19).
+//! They point at curves by their directory
 //! entries, so they are built after every entity is read, from the curves as read (each placed
 //! by its own matrix, in the parent's definition space), then placed by their own matrix.
 //!
@@ -7,7 +8,12 @@
 //! generatrix `C`, turned counterclockwise about the axis from `SA` to `TA` (radians):
 //! [`NurbsSurface::revolve`] (P&T §8.5, A8.1). Entity 122: `DE, LX, LY, LZ`: the directrix and
 //! the end of the generatrix line from the directrix's start, `S = C(t) + v (L − C(t₀))`,
-//! `v ∈ [0, 1]`: [`NurbsSurface::extrude`] (P&T §8.3).
+//! `v ∈ [0, 1]`: [`NurbsSurface::extrude`] (P&T §8.3). Entity 118: `DE1, DE2, DIRFLG, DEVFLG`:
+//! the lines between the points of equal relative parameter of the two curves (the second
+//! reversed when `DIRFLG = 1`), [`NurbsSurface::ruled`] (P&T §8.2); form 0 asks for points of
+//! equal relative arc length, which no NURBS of the two curves gives exactly, and is read by
+//! equal relative parameter too (the same surface when both curves' parameters run
+//! proportionally to arc length, as for two lines).
 //!
 //! Their NURBS parametrisation is not IGES's (the angle of 120 becomes the rational arc
 //! parameter), so curves given in their parameter space (the boundaries of a trimmed surface)
@@ -31,6 +37,12 @@ pub(super) enum Sweep {
     },
     /// Entity 122: directrix (directory entry) and the generatrix's end point, in millimetres.
     Cylinder { directrix: u64, end: [f64; 3] },
+    /// Entity 118: the two curves (directory entries), the second reversed when `DIRFLG = 1`.
+    Ruled {
+        first: u64,
+        second: u64,
+        reversed: bool,
+    },
 }
 
 impl Sweep {
@@ -39,11 +51,13 @@ impl Sweep {
         match self {
             Sweep::Revolution { .. } => "IGES entity 120",
             Sweep::Cylinder { .. } => "IGES entity 122",
+            Sweep::Ruled { .. } => "IGES entity 118",
         }
     }
 
-    /// Entity 120 or 122 from its parameters `v` (`L, C, SA, TA` or `DE, LX, LY, LZ`, read as
-    /// numbers); pointers that are not directory entries are named.
+    /// Entity 118, 120 or 122 from its parameters `v` (`DE1, DE2, DIRFLG, DEVFLG`,
+    /// `L, C, SA, TA` or `DE, LX, LY, LZ`, read as numbers); pointers that are not directory
+    /// entries are named.
     pub(super) fn from_parameters(ty: &str, v: &[f64], unit_mm: f64) -> Result<Sweep, String> {
         let pointer = |k: usize, what: &str| -> Result<u64, String> {
             let x = v[k];
@@ -57,6 +71,13 @@ impl Sweep {
                 ))
             }
         };
+        if ty == "118" {
+            return Ok(Sweep::Ruled {
+                first: pointer(0, "first curve")?,
+                second: pointer(1, "second curve")?,
+                reversed: v[2] == 1.0,
+            });
+        }
         if ty == "120" {
             Ok(Sweep::Revolution {
                 axis: pointer(0, "axis")?,
@@ -102,6 +123,18 @@ impl Sweep {
                 NurbsSurface::revolve(&g, point, dir, sa, ta)
                     .map(Surface::Nurbs)
                     .map_err(lib)
+            }
+            Sweep::Ruled {
+                first,
+                second,
+                reversed,
+            } => {
+                let a = curve(first, "first curve")?.to_nurbs();
+                let mut b = curve(second, "second curve")?.to_nurbs();
+                if reversed {
+                    b = b.reverse().map_err(lib)?;
+                }
+                NurbsSurface::ruled(&a, &b).map(Surface::Nurbs).map_err(lib)
             }
             Sweep::Cylinder { directrix, end } => {
                 let c = curve(directrix, "directrix")?;
@@ -224,6 +257,28 @@ mod tests {
                 assert!((p[2] - 4.0 * v).abs() < 1e-14, "{p:?}");
             }
         }
+    }
+
+    /// Two segments, the second reversed (DIRFLG 1): the ruled surface is the planar
+    /// quadrilateral between them, its corners the segments' ends joined start to end.
+    #[test]
+    fn a_ruled_surface_joins_its_curves_by_lines() {
+        let text = file(&[
+            (110, "110,0.,0.,0.,4.,0.,0.;"),
+            (110, "110,4.,3.,1.,0.,3.,1.;"),
+            (118, "118,1,3,1,0;"),
+        ]);
+        let s = surfaces(&text);
+        assert_eq!(s.len(), 1);
+        let ((u0, u1), (v0, v1)) = s[0].domain();
+        let corner = |u: f64, v: f64| s[0].eval(u, v).unwrap();
+        assert_eq!(corner(u0, v0), vec![0.0, 0.0, 0.0]);
+        assert_eq!(corner(u0, v1), vec![0.0, 3.0, 1.0]);
+        assert_eq!(corner(u1, v1), vec![4.0, 3.0, 1.0]);
+        let m = corner(0.5 * (u0 + u1), 0.5 * (v0 + v1));
+        assert!(
+            (m[0] - 2.0).abs() < 1e-14 && (m[1] - 1.5).abs() < 1e-14 && (m[2] - 0.5).abs() < 1e-14
+        );
     }
 
     /// When faces are read, a swept surface is listed as skipped with the reason (its
