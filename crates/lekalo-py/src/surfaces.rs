@@ -10,7 +10,7 @@ use pyo3::types::PyTuple;
 use crate::convert::IntArg;
 use crate::convert::{array, check_size, filled, floats, grid_points, uv_args, vec1, vec_array};
 use crate::convert::{out_shape, reduce};
-use crate::curves::{PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
+use crate::curves::{curve_of, PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
 use crate::error::{bad, io_err, lib_err};
 
 /// Two knot vectors, a control net and its size `(nu, nv)`.
@@ -464,6 +464,47 @@ surface_common!(PyNurbsSurface, Nurbs, "nurbs_surface", knots PyNurbsCurve, {
     fn weights<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let (nu, nv) = self.inner.net_size();
         array(py, self.inner.weights(), &[nu, nv])
+    }
+
+    /// The surface swept by the 3-D `curve` (any curve class) turning about the axis through
+    /// `axis_point` along `axis_direction`, from `start_angle` to `end_angle` (radians,
+    /// counterclockwise seen from the axis's tip): `u` along the arcs, `v` the curve's
+    /// parameter (`lekalo::NurbsSurface::revolve`, exact, P&T A8.1).
+    #[staticmethod]
+    #[pyo3(signature = (curve, axis_point, axis_direction, start_angle = 0.0,
+                        end_angle = std::f64::consts::TAU))]
+    fn revolve(
+        curve: &Bound<'_, PyAny>,
+        axis_point: [f64; 3],
+        axis_direction: [f64; 3],
+        start_angle: f64,
+        end_angle: f64,
+    ) -> PyResult<Self> {
+        let c = curve_of(curve, "curve")?.to_nurbs();
+        let inner = NurbsSurface::revolve(&c, axis_point, axis_direction, start_angle, end_angle)
+            .map_err(lib_err)?;
+        Ok(Self { inner })
+    }
+
+    /// The 3-D `curve` moved along `direction`: `S(u, v) = C(u) + v·direction`, `v` in
+    /// `[v0, v1]` (`lekalo::NurbsSurface::extrude`, exact, P&T §8.3).
+    #[staticmethod]
+    #[pyo3(signature = (curve, direction, v0 = 0.0, v1 = 1.0))]
+    fn extrude(curve: &Bound<'_, PyAny>, direction: [f64; 3], v0: f64, v1: f64) -> PyResult<Self> {
+        let c = curve_of(curve, "curve")?.to_nurbs();
+        let inner = NurbsSurface::extrude(&c, direction, v0, v1).map_err(lib_err)?;
+        Ok(Self { inner })
+    }
+
+    /// The ruled surface `(1 − v)·first(u) + v·second(u)` between two curves of one dimension,
+    /// each on `[0, 1]` by the affine change of its parameter (`lekalo::NurbsSurface::ruled`,
+    /// exact, P&T §8.2).
+    #[staticmethod]
+    fn ruled(first: &Bound<'_, PyAny>, second: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let a = curve_of(first, "first")?.to_nurbs();
+        let b = curve_of(second, "second")?.to_nurbs();
+        let inner = NurbsSurface::ruled(&a, &b).map_err(lib_err)?;
+        Ok(Self { inner })
     }
 });
 
