@@ -132,6 +132,8 @@ enum Command {
     Bezier(cmd::bezier::BezierArgs),
     /// Blending: deformation of curves, splines through points, corner smoothing.
     Blend(cmd::blend::BlendArgs),
+    /// Exact swept surfaces from curves: revolution about an axis, extrusion, ruled surface.
+    Sweep(cmd::sweep::SweepArgs),
     /// Piecewise polynomials: pp-form ↔ B-spline, quasi-interpolation.
     Pp(cmd::pp::PpArgs),
     /// Knot operations on curves and surfaces: insert, refine, remove, split, reverse,
@@ -281,6 +283,7 @@ where
         Command::Interpolate(a) => cmd::interpolate::run(&a, &cx),
         Command::Bezier(a) => cmd::bezier::run(&a, &cx),
         Command::Blend(a) => cmd::blend::run(&a, &cx),
+        Command::Sweep(a) => cmd::sweep::run(&a, &cx),
         Command::Pp(a) => cmd::pp::run(&a, &cx),
         Command::Knot(a) => cmd::knot::run(&a, &cx),
         Command::Fit(a) => cmd::fit::run(&a, &cx),

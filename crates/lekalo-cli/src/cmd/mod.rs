@@ -19,7 +19,7 @@ pub(crate) mod serve;
 // each subcommand keeps its short path (`crate::cmd::make`)
 pub(crate) use construct::{
     bezier, blend, explicit, interpolate, jump, knot, knots, make, make_surface, make_tensor, pp,
-    tensor,
+    sweep, tensor,
 };
 pub(crate) use files::{cad, convert};
 pub(crate) use fitting::args as fit_args;

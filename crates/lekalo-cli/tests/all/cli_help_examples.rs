@@ -160,6 +160,8 @@ fn overrides(path: &str) -> Vec<(&'static str, String)> {
             "helix.json",
             bezier("[[0, 0, 0], [1, 0, 0], [1, 1, 0], [1, 1, 1]]"),
         )],
+        // a second space curve for the ruled surface between it and curve3d.json
+        "sweep ruled" => vec![("upper.json", bezier("[[0, 0, 1], [1, 2, 2], [3, 1, 3]]"))],
         "offset" => vec![(
             "ellipse.json",
             r#"{"lekalo": 1, "type": "nurbs_curve", "degree": 2, "knots": [0, 0, 0, 1, 1, 1], "control": [[2, 0], [2, 1], [0, 1]], "weights": [1, 0.7071067811865476, 1]}"#.into(),

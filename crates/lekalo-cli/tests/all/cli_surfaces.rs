@@ -371,3 +371,106 @@ fn help_names_a_surfaces_columns_as_written() {
         );
     }
 }
+
+/// `lekalo sweep`: a segment turned a quarter turn about z lies on the cylinder of its
+/// distance (every grid point of `eval` at radius 2), a ruled surface has its two curves as
+/// edges, and bad vectors and output formats exit with 2 naming the option.
+#[test]
+fn sweep_builds_exact_surfaces_from_curves() {
+    let d = tempfile::tempdir().unwrap();
+    let seg = d.path().join("seg.json");
+    fs::write(
+        &seg,
+        r#"{"lekalo": 1, "type": "bezier_curve", "control": [[2, 0, 1], [2, 0, 3]]}"#,
+    )
+    .unwrap();
+    let out = d.path().join("rev.json");
+    lekalo()
+        .args(["sweep", "revolve"])
+        .arg(&seg)
+        .args(["--axis-point", "0,0,0", "--axis-direction", "0,0,1"])
+        .args(["--angles", "-1.5707963267948966,0", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
+    let csv = lekalo()
+        .arg("eval")
+        .arg(&out)
+        .args(["--grid", "5x3"])
+        .output()
+        .unwrap();
+    assert!(csv.status.success());
+    let text = String::from_utf8(csv.stdout).unwrap();
+    let mut rows = 0;
+    for line in text.lines().skip(1) {
+        let f: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        let (x, y) = (f[2], f[3]);
+        assert!((x.hypot(y) - 2.0).abs() < 1e-13, "{line}");
+        assert!(
+            x >= -1e-13 && y <= 1e-13,
+            "{line}: not in the fourth quadrant"
+        );
+        rows += 1;
+    }
+    assert_eq!(rows, 15);
+    let upper = d.path().join("upper.json");
+    fs::write(
+        &upper,
+        r#"{"lekalo": 1, "type": "bezier_curve", "control": [[0, 0, 5], [1, 1, 5], [4, 0, 5]]}"#,
+    )
+    .unwrap();
+    let ruled = d.path().join("ruled.json");
+    lekalo()
+        .args(["sweep", "ruled"])
+        .arg(&seg)
+        .arg(&upper)
+        .arg("-o")
+        .arg(&ruled)
+        .assert()
+        .success();
+    let corners = lekalo()
+        .arg("eval")
+        .arg(&ruled)
+        .args(["--uv", "0,0,1,0,0,1,1,1"])
+        .output()
+        .unwrap();
+    let text = String::from_utf8(corners.stdout).unwrap();
+    let got: Vec<Vec<f64>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').skip(2).map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(
+        got,
+        vec![
+            vec![2.0, 0.0, 1.0],
+            vec![2.0, 0.0, 3.0],
+            vec![0.0, 0.0, 5.0],
+            vec![4.0, 0.0, 5.0]
+        ]
+    );
+    lekalo()
+        .args(["sweep", "extrude"])
+        .arg(&seg)
+        .args(["--direction", "0,0"])
+        .assert()
+        .code(2)
+        .stderr(contains("--direction: 2 numbers"));
+    lekalo()
+        .args(["sweep", "extrude"])
+        .arg(&seg)
+        .args(["--direction", "0,0,0"])
+        .assert()
+        .code(2)
+        .stderr(contains("direction"));
+    lekalo()
+        .args(["sweep", "ruled"])
+        .arg(&seg)
+        .arg(&upper)
+        .arg("-o")
+        .arg(d.path().join("r.step"))
+        .assert()
+        .code(2)
+        .stderr(contains("lekalo convert"));
+    assert!(!d.path().join("r.step").exists());
+}

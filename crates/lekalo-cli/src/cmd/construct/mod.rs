@@ -1,5 +1,6 @@
 //! Subcommands that build objects: control points, interpolation, explicit and tensor
-//! splines, Bezier degree change, blending, piecewise polynomials, knot vectors and knot operations.
+//! splines, Bezier degree change, blending, piecewise polynomials, knot vectors and knot
+//! operations, swept surfaces.
 //!
 //! - `make.rs`: `lekalo make`: curves from control points;
 //! - `make_surface.rs`: `lekalo make` of surfaces;
@@ -12,7 +13,8 @@
 //! - `jump.rs`: `lekalo blend jump`: the jump polynomials;
 //! - `pp.rs`: `lekalo pp`: piecewise polynomials and quasi-interpolation;
 //! - `knots.rs`: `lekalo knots`: knot vectors;
-//! - `knot.rs`: `lekalo knot`: knot operations on curves and surfaces.
+//! - `knot.rs`: `lekalo knot`: knot operations on curves and surfaces;
+//! - `sweep.rs`: `lekalo sweep`: surfaces of revolution, extrusions and ruled surfaces.
 
 pub(crate) mod bezier;
 pub(crate) mod blend;
@@ -25,4 +27,5 @@ pub(crate) mod make;
 pub(crate) mod make_surface;
 pub(crate) mod make_tensor;
 pub(crate) mod pp;
+pub(crate) mod sweep;
 pub(crate) mod tensor;
