@@ -29,6 +29,9 @@ const WRITE_OBJECTS: &[&str] = &[
     "knot reparam",
     "knot decompose",
     "knot join",
+    "sweep revolve",
+    "sweep extrude",
+    "sweep ruled",
 ];
 
 /// One `--json` run per subcommand that reports a result.
