@@ -134,6 +134,8 @@ enum Command {
     Blend(cmd::blend::BlendArgs),
     /// Exact swept surfaces from curves: revolution about an axis, extrusion, ruled surface.
     Sweep(cmd::sweep::SweepArgs),
+    /// Fix parameters: a spline in N parameters in the others, a surface's iso-curve.
+    Slice(cmd::slice::SliceArgs),
     /// Piecewise polynomials: pp-form ↔ B-spline, quasi-interpolation.
     Pp(cmd::pp::PpArgs),
     /// Knot operations on curves and surfaces: insert, refine, remove, split, reverse,
@@ -284,6 +286,7 @@ where
         Command::Bezier(a) => cmd::bezier::run(&a, &cx),
         Command::Blend(a) => cmd::blend::run(&a, &cx),
         Command::Sweep(a) => cmd::sweep::run(&a, &cx),
+        Command::Slice(a) => cmd::slice::run(&a, &cx),
         Command::Pp(a) => cmd::pp::run(&a, &cx),
         Command::Knot(a) => cmd::knot::run(&a, &cx),
         Command::Fit(a) => cmd::fit::run(&a, &cx),

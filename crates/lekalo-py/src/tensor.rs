@@ -428,6 +428,35 @@ impl PyTensorBSpline {
         })
     }
 
+    /// The same spline with the knot `x` inserted `times` times in variable `axis` (from 0):
+    /// one more coefficient a copy along that axis (`TensorBSpline::insert_knot`, Boehm along
+    /// each line of the net, `docs/theory/tensor.md#operations-along-one-direction`).
+    #[pyo3(signature = (x, axis, times = IntArg::of(1)), text_signature = "($self, x, axis, times=1)")]
+    fn insert_knot(&self, py: Python<'_>, x: f64, axis: IntArg, times: IntArg) -> PyResult<Self> {
+        let (axis, times) = (axis.count("axis")?, times.count("times")?);
+        let inner = py
+            .detach(|| self.inner.insert_knot(axis, x, times))
+            .map_err(lib_err)?;
+        Ok(Self {
+            inner,
+            trailing: self.trailing.clone(),
+        })
+    }
+
+    /// The spline in the variables left free, the others fixed: `fixed` holds one entry per
+    /// variable, a value or `None` (free), so `s.slice([None, 0.5, None])(x)` is
+    /// `s([x[0], 0.5, x[1]])` (`TensorBSpline::slice`,
+    /// `docs/theory/tensor.md#operations-along-one-direction`).
+    fn slice(&self, py: Python<'_>, fixed: Vec<Option<f64>>) -> PyResult<Self> {
+        let inner = py
+            .detach(|| self.inner.slice(&fixed))
+            .map_err(|e| named("fixed", &e))?;
+        Ok(Self {
+            inner,
+            trailing: self.trailing.clone(),
+        })
+    }
+
     /// The same spline as a `scipy.interpolate.NdBSpline` (bit for bit; no extrapolation).
     fn to_scipy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let nd = py.import("scipy.interpolate")?.getattr("NdBSpline")?;

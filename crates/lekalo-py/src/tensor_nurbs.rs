@@ -9,7 +9,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 use crate::convert::{array, check_size, counts, filled, floats, IntArg};
-use crate::error::{bad, named};
+use crate::error::{bad, lib_err, named};
 use crate::tensor::{axes_arg, knot_tuple, points_arg, tensor_arg, PyTensorBSpline};
 
 /// A rational tensor-product spline in `N` variables.
@@ -118,13 +118,17 @@ impl PyTensorNurbs {
 
     /// The spline (or, with `nu`, the partial derivative of orders `nu`, one per variable, by
     /// the quotient rule in `N` variables, `TensorNurbs::eval_partial`) at the points `x` of
-    /// shape `(..., N)`: shape `(..., *trailing)`. A point outside the domain is refused.
-    #[pyo3(signature = (x, nu = None))]
+    /// shape `(..., N)`: shape `(..., *trailing)`. A point outside the domain is refused, or
+    /// with `extrapolate=True` evaluated by the end spans' polynomials continued, numerator and
+    /// weight alike (`TensorNurbs::par_eval_batch_extrapolated`); where the continued weight
+    /// reaches 0 the value is not finite.
+    #[pyo3(signature = (x, nu = None, extrapolate = false))]
     fn __call__(
         &self,
         py: Python<'_>,
         x: &Bound<'_, PyAny>,
         nu: Option<Vec<IntArg>>,
+        extrapolate: bool,
     ) -> PyResult<Py<PyAny>> {
         let n = self.inner.n_vars();
         let xa = points_arg(x, n)?;
@@ -144,10 +148,16 @@ impl PyTensorNurbs {
         check_size("x", &[lead.iter().product(), dim])?;
         let xs = xa.data();
         let out = filled(py, &self.out_shape(lead), |out| match &orders {
+            None if extrapolate => self.inner.par_eval_batch_extrapolated(xs, out),
             None => self.inner.par_eval_batch(xs, out),
             Some(orders) => {
                 for (p, o) in xs.chunks_exact(n).zip(out.chunks_exact_mut(dim)) {
-                    o.copy_from_slice(&self.inner.eval_partial(p, orders)?);
+                    let v = if extrapolate {
+                        self.inner.eval_partial_extrapolated(p, orders)?
+                    } else {
+                        self.inner.eval_partial(p, orders)?
+                    };
+                    o.copy_from_slice(&v);
                 }
                 Ok(())
             }
@@ -174,6 +184,33 @@ impl PyTensorNurbs {
             self.inner.eval_grid(&refs, out)
         })?;
         Ok(out.unbind())
+    }
+
+    /// The same spline with the knot `x` inserted `times` times in variable `axis` (from 0):
+    /// the homogeneous spline's insertion (`TensorNurbs::insert_knot`, P&T §5.2).
+    #[pyo3(signature = (x, axis, times = IntArg::of(1)), text_signature = "($self, x, axis, times=1)")]
+    fn insert_knot(&self, py: Python<'_>, x: f64, axis: IntArg, times: IntArg) -> PyResult<Self> {
+        let (axis, times) = (axis.count("axis")?, times.count("times")?);
+        let inner = py
+            .detach(|| self.inner.insert_knot(axis, x, times))
+            .map_err(lib_err)?;
+        Ok(Self {
+            inner,
+            trailing: self.trailing.clone(),
+        })
+    }
+
+    /// The rational spline in the variables left free, the others fixed: `fixed` holds one
+    /// entry per variable, a value or `None` (`TensorNurbs::slice`, the homogeneous spline
+    /// sliced).
+    fn slice(&self, py: Python<'_>, fixed: Vec<Option<f64>>) -> PyResult<Self> {
+        let inner = py
+            .detach(|| self.inner.slice(&fixed))
+            .map_err(|e| named("fixed", &e))?;
+        Ok(Self {
+            inner,
+            trailing: self.trailing.clone(),
+        })
     }
 
     /// The homogeneous B-spline `(w c, w)`: a `TensorBSpline` whose values have one more

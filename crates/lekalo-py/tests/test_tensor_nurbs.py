@@ -131,3 +131,58 @@ def test_errors_name_the_argument():
         lekalo.tensor_nurbs_knot_jvp(t, c, K, w, x, [None, None])
     with pytest.raises(lekalo.InputError, match="cotangent"):
         lekalo.tensor_nurbs_knot_vjp(t, c, K, w, x, np.zeros((len(x), 3)))
+
+
+def test_knot_insertion_and_slicing_keep_the_spline():
+    t, c, w, x = case()
+    r = lekalo.TensorNurbs(t, c, list(K), w)
+    for axis, at, times in [(0, 0.3, 1), (1, 0.21, 3), (2, 0.9, 1)]:
+        q = r.insert_knot(at, axis, times=times)
+        assert isinstance(q, lekalo.TensorNurbs)
+        assert q.c.shape[axis] == c.shape[axis] + times and q.c.shape[3:] == (2,)
+        assert np.count_nonzero(q.t[axis] == at) == np.count_nonzero(t[axis] == at) + times
+        np.testing.assert_allclose(q(x), r(x), rtol=0, atol=1e-13)
+    # a slice is the spline with the fixed values put in, and stays rational
+    p = r.slice([None, 0.62, None])
+    assert isinstance(p, lekalo.TensorNurbs) and p.ndim == 2
+    full = np.c_[x[:, 0], np.full(len(x), 0.62), x[:, 2]]
+    np.testing.assert_allclose(p(x[:, [0, 2]]), r(full), rtol=0, atol=1e-13)
+    one = r.slice([0.1, None, 0.8])
+    np.testing.assert_allclose(
+        one(x[:, 1:2]), r(np.c_[np.full(len(x), 0.1), x[:, 1], np.full(len(x), 0.8)]),
+        rtol=0, atol=1e-13,
+    )
+    # the B-spline's slice and insertion: the same along the homogeneous net
+    b = lekalo.TensorBSpline(t, c, list(K))
+    np.testing.assert_allclose(b.slice([None, 0.62, None])(x[:, [0, 2]]), b(full),
+                               rtol=0, atol=1e-14)
+    np.testing.assert_allclose(b.insert_knot(0.5, 2, times=1)(x), b(x), rtol=0, atol=1e-14)
+    for bad, says in [
+        (lambda: r.insert_knot(0.5, 3), "axis"),
+        (lambda: r.insert_knot(0.5, -1), "axis"),
+        (lambda: r.insert_knot(0.5, 1, times=4), "times"),
+        (lambda: r.slice([0.5, None]), "fixed"),
+        (lambda: r.slice([0.5, 0.5, 0.5]), "fixed"),
+        (lambda: b.slice([1.5, None, None]), "fixed"),
+    ]:
+        with pytest.raises(lekalo.InputError, match=says):
+            bad()
+
+
+def test_extrapolation_continues_numerator_and_weight():
+    t, c, w, x = case()
+    r = lekalo.TensorNurbs(t, c, list(K), w)
+    out = x + np.array([0.5, -0.6, 0.3])
+    with pytest.raises(lekalo.InputError, match="outside the domain"):
+        r(out)
+    # inside the domain the same bits; outside the quotient of the continued homogeneous spline
+    assert np.array_equal(r(x, extrapolate=True), r(x))
+    h = r.homogeneous()(out, extrapolate=True)
+    np.testing.assert_allclose(r(out, extrapolate=True), h[:, :2] / h[:, 2:], rtol=1e-13)
+    # partial derivatives outside: central differences of the continued values
+    e = 1e-6
+    for nu in ([1, 0, 0], [0, 1, 0], [0, 0, 1]):
+        d = np.array(nu) * e
+        fd = (r(out + d, extrapolate=True) - r(out - d, extrapolate=True)) / (2 * e)
+        np.testing.assert_allclose(r(out, nu=nu, extrapolate=True), fd, rtol=1e-6, atol=1e-6)
+    assert np.array_equal(r(x, nu=[1, 1, 0], extrapolate=True), r(x, nu=[1, 1, 0]))

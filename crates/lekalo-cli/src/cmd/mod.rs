@@ -1,7 +1,8 @@
 //! The subcommands, grouped by subject; each module holds one subcommand's arguments (clap
 //! derive, with examples) and its `run`.
 //!
-//! - `construct/`: building objects (make, interpolate, bezier, blend, pp, knots, knot);
+//! - `construct/`: building objects (make, interpolate, bezier, blend, pp, knots, knot, slice,
+//!   sweep);
 //! - `inspect/`: looking at objects (info, eval, plot);
 //! - `fitting/`: `lekalo fit`;
 //! - `queries/`: geometric queries (measure, project, intersect, offset, mesh);
@@ -19,7 +20,7 @@ pub(crate) mod serve;
 // each subcommand keeps its short path (`crate::cmd::make`)
 pub(crate) use construct::{
     bezier, blend, explicit, interpolate, jump, knot, knots, make, make_surface, make_tensor, pp,
-    sweep, tensor,
+    slice, sweep, tensor,
 };
 pub(crate) use files::{cad, convert};
 pub(crate) use fitting::args as fit_args;

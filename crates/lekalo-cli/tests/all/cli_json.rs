@@ -32,6 +32,7 @@ const WRITE_OBJECTS: &[&str] = &[
     "sweep revolve",
     "sweep extrude",
     "sweep ruled",
+    "slice",
 ];
 
 /// One `--json` run per subcommand that reports a result.

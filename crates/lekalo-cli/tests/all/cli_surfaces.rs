@@ -474,3 +474,6 @@ fn sweep_builds_exact_surfaces_from_curves() {
         .stderr(contains("lekalo convert"));
     assert!(!d.path().join("r.step").exists());
 }
+
+#[path = "cli_surfaces/slice.rs"]
+mod slice;

@@ -139,4 +139,30 @@ impl Tensor {
             Tensor::Nurbs(s) => s.eval_grid(axes, out),
         }
     }
+
+    /// The same spline with the knot `t` inserted `times` times in direction `axis` (from 0):
+    /// [`TensorBSpline::insert_knot`] or [`TensorNurbs::insert_knot`] (Boehm along each line
+    /// of the net; P&T A5.3 in `N` directions).
+    ///
+    /// # Errors
+    /// As those methods.
+    pub fn insert_knot(&self, axis: usize, t: f64, times: usize) -> Result<Tensor> {
+        Ok(match self {
+            Tensor::BSpline(s) => Tensor::BSpline(s.insert_knot(axis, t, times)?),
+            Tensor::Nurbs(s) => Tensor::Nurbs(s.insert_knot(axis, t, times)?),
+        })
+    }
+
+    /// The spline in the free parameters with the others fixed (`fixed[a] = Some(x_a)`), of
+    /// the same kind: [`TensorBSpline::slice`] or [`TensorNurbs::slice`]
+    /// (`docs/theory/tensor.md#operations-along-one-direction`).
+    ///
+    /// # Errors
+    /// As those methods.
+    pub fn slice(&self, fixed: &[Option<f64>]) -> Result<Tensor> {
+        Ok(match self {
+            Tensor::BSpline(s) => Tensor::BSpline(s.slice(fixed)?),
+            Tensor::Nurbs(s) => Tensor::Nurbs(s.slice(fixed)?),
+        })
+    }
 }

@@ -229,7 +229,7 @@ impl TensorNurbs {
     /// # Errors
     /// As [`TensorBSpline::eval_batch`].
     pub fn eval_batch(&self, xs: &[f64], out: &mut [f64]) -> Result<()> {
-        self.batch(xs, out, false)
+        self.batch(xs, out, Batch::Serial)
     }
 
     /// [`TensorNurbs::eval_batch`] on the rayon pool ([`TensorBSpline::par_eval_batch`]); the
@@ -238,19 +238,33 @@ impl TensorNurbs {
     /// # Errors
     /// As [`TensorBSpline::eval_batch`].
     pub fn par_eval_batch(&self, xs: &[f64], out: &mut [f64]) -> Result<()> {
-        self.batch(xs, out, true)
+        self.batch(xs, out, Batch::Parallel)
     }
 
-    fn batch(&self, xs: &[f64], out: &mut [f64], parallel: bool) -> Result<()> {
+    /// [`TensorNurbs::par_eval_batch`] with points outside the domain evaluated by the end
+    /// spans' polynomials continued ([`TensorBSpline::par_eval_batch_extrapolated`] of the
+    /// homogeneous spline, then one division a value; SciPy's `extrapolate=True`). Inside the
+    /// domain the same bits as [`TensorNurbs::par_eval_batch`]. Outside it the continued weight
+    /// function may reach 0, where the value is not finite.
+    ///
+    /// # Errors
+    /// As [`TensorBSpline::par_eval_batch_extrapolated`].
+    pub fn par_eval_batch_extrapolated(&self, xs: &[f64], out: &mut [f64]) -> Result<()> {
+        self.batch(xs, out, Batch::Extrapolated)
+    }
+
+    fn batch(&self, xs: &[f64], out: &mut [f64], how: Batch) -> Result<()> {
         let hd = self.homogeneous.dim();
         let n = self.n_vars();
         let points = xs.len() / n;
         check_len("output (points × dim)", points * self.dim(), out.len())?;
         let mut h = vec![0.0; points * hd];
-        if parallel {
-            self.homogeneous.par_eval_batch(xs, None, &mut h)?;
-        } else {
-            self.homogeneous.eval_batch(xs, None, &mut h)?;
+        match how {
+            Batch::Serial => self.homogeneous.eval_batch(xs, None, &mut h)?,
+            Batch::Parallel => self.homogeneous.par_eval_batch(xs, None, &mut h)?,
+            Batch::Extrapolated => self
+                .homogeneous
+                .par_eval_batch_extrapolated(xs, None, &mut h)?,
         }
         write_projected(&mut h, hd, out);
         Ok(())
@@ -267,6 +281,38 @@ impl TensorNurbs {
     /// As [`TensorBSpline::eval_partial`]; [`Error::TooLarge`] if `T` exceeds
     /// [`MAX_TENSOR_DERIVATIVE_TABLE`].
     pub fn eval_partial(&self, x: &[f64], orders: &[usize]) -> Result<Vec<f64>> {
+        self.partial_by(orders, |alpha| self.homogeneous.eval_partial(x, alpha))
+    }
+
+    /// [`TensorNurbs::eval_partial`] with a point outside the domain evaluated by the end
+    /// spans' polynomials continued: the same quotient rule on the homogeneous partials of
+    /// [`TensorBSpline::par_eval_batch_extrapolated`].
+    ///
+    /// # Errors
+    /// As [`TensorNurbs::eval_partial`], except that a finite point outside the domain is
+    /// evaluated; [`Error::NonFinite`] for a coordinate that is NaN or infinite.
+    pub fn eval_partial_extrapolated(&self, x: &[f64], orders: &[usize]) -> Result<Vec<f64>> {
+        check_len(
+            "point coordinates (one per direction)",
+            self.n_vars(),
+            x.len(),
+        )?;
+        let hd = self.homogeneous.dim();
+        self.partial_by(orders, |alpha| {
+            let mut a = vec![0.0; hd];
+            self.homogeneous
+                .par_eval_batch_extrapolated(x, Some(alpha), &mut a)?;
+            Ok(a)
+        })
+    }
+
+    /// The quotient rule of [`TensorNurbs::eval_partial`], the homogeneous partial of each
+    /// multi-index `α` from `partial(α)`.
+    fn partial_by(
+        &self,
+        orders: &[usize],
+        partial: impl Fn(&[usize]) -> Result<Vec<f64>>,
+    ) -> Result<Vec<f64>> {
         let n = self.n_vars();
         check_len("derivative orders (one per direction)", n, orders.len())?;
         let table = orders
@@ -286,7 +332,7 @@ impl TensorNurbs {
         let alphas = multi_indices(orders);
         let mut a_vals = Vec::with_capacity(table);
         for alpha in &alphas {
-            a_vals.push(self.homogeneous.eval_partial(x, alpha)?);
+            a_vals.push(partial(alpha)?);
         }
         let mut r = vec![0.0; table * dim];
         let w = a_vals[0][dim];
@@ -335,6 +381,14 @@ impl TensorNurbs {
             homogeneous: self.homogeneous.slice(fixed)?,
         })
     }
+}
+
+/// How [`TensorNurbs::batch`] evaluates the homogeneous spline.
+#[derive(Clone, Copy)]
+enum Batch {
+    Serial,
+    Parallel,
+    Extrapolated,
 }
 
 /// `h[..dim] / h[dim]` in place; returns the projected part.

@@ -214,7 +214,7 @@ impl TensorBSpline {
     /// fixed value outside its domain.
     pub fn slice(&self, fixed: &[Option<f64>]) -> Result<TensorBSpline> {
         check_len(
-            "fixed parameters (one Option per direction)",
+            "fixed parameters (one per direction, a value or free)",
             self.n_vars(),
             fixed.len(),
         )?;

@@ -1297,3 +1297,69 @@ fn a_large_batch_in_cell_order_has_the_bits_of_the_sequential_one() {
         assert_eq!(e, s.eval_batch(&bad, None, &mut seq).unwrap_err());
     }
 }
+
+#[test]
+fn a_rational_spline_continued_stays_on_its_conic_and_tensor_operations_keep_the_kind() {
+    // a quarter circle in the first direction, lifted linearly in z by the second: the
+    // numerator and the weight continued beyond the domain stay on the unit circle
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let mut net = Vec::new();
+    for p in [[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] {
+        for z in [0.0, 2.0] {
+            net.extend([p[0], p[1], z]);
+        }
+    }
+    let s = TensorNurbs::new(
+        vec![2, 1],
+        vec![vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], vec![0.0, 0.0, 1.0, 1.0]],
+        Points::from_flat(3, net).unwrap(),
+        &[1.0, 1.0, h, h, 1.0, 1.0],
+    )
+    .unwrap();
+    let inside = [0.3, 0.4, 0.9, 0.1];
+    let outside = [-0.4, 0.5, 1.7, 1.3, 0.5, -0.25];
+    let (mut a, mut b) = (vec![0.0; 6], vec![0.0; 6]);
+    s.par_eval_batch(&inside, &mut a).unwrap();
+    s.par_eval_batch_extrapolated(&inside, &mut b).unwrap();
+    assert_eq!(a, b, "inside the domain the same bits");
+    assert!(s.par_eval_batch(&outside, &mut vec![0.0; 9]).is_err());
+    let mut c = vec![0.0; 9];
+    s.par_eval_batch_extrapolated(&outside, &mut c).unwrap();
+    for (p, x) in c.chunks_exact(3).zip(outside.chunks_exact(2)) {
+        assert!(
+            (p[0].hypot(p[1]) - 1.0).abs() < 1e-14,
+            "on the circle: {p:?}"
+        );
+        assert!((p[2] - 2.0 * x[1]).abs() < 1e-14, "z linear: {p:?}");
+    }
+    // partials outside against differences of the continued values
+    let x = [1.7, 1.3];
+    let d = s.eval_partial_extrapolated(&x, &[1, 0]).unwrap();
+    assert!(s.eval_partial(&x, &[1, 0]).is_err());
+    let e = 1e-6;
+    let (mut fp, mut fm) = (vec![0.0; 3], vec![0.0; 3]);
+    s.par_eval_batch_extrapolated(&[x[0] + e, x[1]], &mut fp)
+        .unwrap();
+    s.par_eval_batch_extrapolated(&[x[0] - e, x[1]], &mut fm)
+        .unwrap();
+    let fd: Vec<f64> = fp
+        .iter()
+        .zip(&fm)
+        .map(|(p, m)| (p - m) / (2.0 * e))
+        .collect();
+    assert_near(&d, &fd, 1e-7, 10.0, "continued partial");
+    // the kind-independent operations of `Tensor` keep the rational kind and the values
+    let t = crate::Tensor::from(s.clone());
+    let r = t.insert_knot(0, 0.3, 2).unwrap();
+    assert!(matches!(r, crate::Tensor::Nurbs(_)));
+    assert_eq!(r.shape(), &[5, 2]);
+    let (mut v0, mut v1) = (vec![0.0; 6], vec![0.0; 6]);
+    t.eval_batch(&inside, &mut v0).unwrap();
+    r.eval_batch(&inside, &mut v1).unwrap();
+    assert_near(&v0, &v1, 1e-15, 10.0, "inserted");
+    let line = t.slice(&[None, Some(0.5)]).unwrap();
+    assert_eq!((line.n_vars(), line.weights().is_some()), (1, true));
+    let mut p = vec![0.0; 3];
+    line.eval_batch(&[0.3], &mut p).unwrap();
+    assert_near(&p, &s.eval(&[0.3, 0.5]).unwrap(), 1e-15, 10.0, "sliced");
+}

@@ -1,5 +1,6 @@
 //! `lekalo knot`: knot operations on curves and surfaces — insert, refine, remove, split,
-//! reverse, reparametrise, decompose into Bezier pieces and join them back. Every operation is
+//! reverse, reparametrise, decompose into Bezier pieces and join them back — and knot
+//! insertion in splines in N parameters. Every operation is
 //! the library's own (`BSplineCurve::insert_knot`, `NurbsSurface::split_at_u`, …); this module
 //! only chooses the method by the object's kind and the direction.
 
@@ -20,8 +21,9 @@ use crate::values::numbers;
 /// Arguments of `lekalo knot`.
 #[derive(Args, Debug)]
 #[command(after_help = "\
-Curves (Bezier, B-spline, NURBS) and surfaces (in u or v with --dir). A Bezier curve or
-surface is first written as a B-spline on clamped knots. Results that are several objects
+Curves (Bezier, B-spline, NURBS) and surfaces (in u or v with --dir); `insert` also takes
+splines in N parameters (in direction K with --axis K). A Bezier curve or surface is first
+written as a B-spline on clamped knots. Results that are several objects
 (split, decompose) are JSON Lines, one object per line; `join` reads them back.
 
 Examples:
@@ -34,17 +36,17 @@ Examples:
   lekalo knot reparam curve.json --interval 0,10 -o scaled.json
   lekalo knot decompose curve.json -o pieces.jsonl
   lekalo knot join pieces.jsonl -o joined.json
-  lekalo knot insert surface.json --dir v --at 0.5 -o surface2.json")]
+  lekalo knot insert surface.json --dir v --at 0.5 -o surface2.json
+  lekalo knot insert tensor.json --axis 3 --at 0.5 -o tensor2.json")]
 pub(crate) struct KnotArgs {
     #[command(subcommand)]
     op: KnotOp,
 }
 
 /// Parameter direction of a surface.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum Dir {
     /// The first parameter.
-    #[default]
     U,
     /// The second parameter.
     V,
@@ -58,9 +60,42 @@ pub(crate) struct Common {
     /// Output file (default: standard output).
     #[arg(short, long, value_name = "FILE")]
     output: Option<PathBuf>,
-    /// Surfaces: the parameter direction.
-    #[arg(long, value_enum, default_value_t = Dir::U)]
-    dir: Dir,
+    /// Surfaces: the parameter direction (default u).
+    #[arg(long, value_enum)]
+    dir: Option<Dir>,
+    /// Splines in N parameters: the direction `K` (from 1; default 1). `--dir u|v` names
+    /// directions 1 and 2 too.
+    #[arg(long, value_name = "K", conflicts_with = "dir")]
+    axis: Option<usize>,
+}
+
+impl Common {
+    /// The surface direction of `--dir`, or of `--axis 1|2`.
+    fn surface_dir(&self) -> Result<Direction> {
+        match (self.dir, self.axis) {
+            (Some(Dir::V), _) | (None, Some(2)) => Ok(Direction::V),
+            (Some(Dir::U), _) | (None, None | Some(1)) => Ok(Direction::U),
+            (None, Some(k)) => bad_input(format!(
+                "--axis {k}: a surface has the directions 1 and 2 (u and v)"
+            )),
+        }
+    }
+
+    /// The direction (from 0) of a spline in `n` parameters: `--axis K`, `--dir u|v`, or
+    /// the first.
+    fn tensor_axis(&self, n: usize) -> Result<usize> {
+        let k = match (self.dir, self.axis) {
+            (Some(Dir::U), _) => 1,
+            (Some(Dir::V), _) => 2,
+            (None, k) => k.unwrap_or(1),
+        };
+        if k == 0 || k > n {
+            return bad_input(format!(
+                "--axis {k}: the spline has {n} parameters; directions run from 1 to {n}"
+            ));
+        }
+        Ok(k - 1)
+    }
 }
 
 #[derive(Subcommand, Debug)]
@@ -72,7 +107,8 @@ multiplicity degree at most (degree + 1 at the ends of the domain).
 
 Examples:
   lekalo knot insert curve.json --at 0.5 --times 2 -o inserted.json
-  lekalo knot insert surface.json --dir v --at 0.5 -o surface2.json")]
+  lekalo knot insert surface.json --dir v --at 0.5 -o surface2.json
+  lekalo knot insert tensor.json --axis 3 --at 0.5 -o tensor2.json   # a spline in N parameters")]
     Insert {
         #[command(flatten)]
         c: Common,
@@ -183,14 +219,6 @@ Examples:
     },
 }
 
-/// The library's direction of `--dir`.
-fn direction(d: Dir) -> Direction {
-    match d {
-        Dir::U => Direction::U,
-        Dir::V => Direction::V,
-    }
-}
-
 fn one(text: &str, what: &str) -> Result<f64> {
     let v = numbers(text, what)?;
     if v.len() != 1 {
@@ -225,7 +253,19 @@ pub(crate) fn run(a: &KnotArgs, cx: &Context) -> Result<()> {
             let t = one(at, "--at")?;
             let out = match load_shape(&c.input, cx)? {
                 Shape::Curve(o) => Shape::Curve(o.insert_knot(t, *times)?),
-                Shape::Surface(s) => Shape::Surface(s.insert_knot(direction(c.dir), t, *times)?),
+                Shape::Surface(s) => Shape::Surface(s.insert_knot(c.surface_dir()?, t, *times)?),
+                Shape::Tensor(s) => {
+                    let axis = c.tensor_axis(s.n_vars())?;
+                    let out = s.insert_knot(axis, t, *times)?;
+                    let inputs = std::slice::from_ref(&c.input);
+                    let out_file = c.output.as_deref();
+                    return crate::output::objects::write_tensor(
+                        &out,
+                        (None, out_file),
+                        inputs,
+                        cx,
+                    );
+                }
                 other => return not_spline(&c.input, &other),
             };
             write_one(c, &out, cx)
@@ -234,7 +274,7 @@ pub(crate) fn run(a: &KnotArgs, cx: &Context) -> Result<()> {
             let x = numbers(knots, "--knots")?;
             let out = match load_shape(&c.input, cx)? {
                 Shape::Curve(o) => Shape::Curve(o.refine_knots(&x)?),
-                Shape::Surface(s) => Shape::Surface(s.refine_knots(direction(c.dir), &x)?),
+                Shape::Surface(s) => Shape::Surface(s.refine_knots(c.surface_dir()?, &x)?),
                 other => return not_spline(&c.input, &other),
             };
             write_one(c, &out, cx)
@@ -297,7 +337,7 @@ pub(crate) fn run(a: &KnotArgs, cx: &Context) -> Result<()> {
                     vec![Shape::Curve(l), Shape::Curve(r)]
                 }
                 Shape::Surface(s) => {
-                    let (l, r) = s.split_at(direction(c.dir), t)?;
+                    let (l, r) = s.split_at(c.surface_dir()?, t)?;
                     vec![Shape::Surface(l), Shape::Surface(r)]
                 }
                 other => return not_spline(&c.input, &other),
@@ -307,7 +347,7 @@ pub(crate) fn run(a: &KnotArgs, cx: &Context) -> Result<()> {
         KnotOp::Reverse { c } => {
             let out = match load_shape(&c.input, cx)? {
                 Shape::Curve(o) => Shape::Curve(o.reverse()?),
-                Shape::Surface(s) => Shape::Surface(s.reverse(direction(c.dir))?),
+                Shape::Surface(s) => Shape::Surface(s.reverse(c.surface_dir()?)?),
                 other => return not_spline(&c.input, &other),
             };
             write_one(c, &out, cx)
@@ -369,6 +409,13 @@ pub(crate) fn run(a: &KnotArgs, cx: &Context) -> Result<()> {
 }
 
 fn not_spline<T>(path: &Path, s: &Shape) -> Result<T> {
+    if let Shape::Tensor(_) = s {
+        return bad_input(format!(
+            "{}: a spline in N parameters takes `lekalo knot insert --axis K` (and `lekalo \
+             slice`); the other knot operations take curves and surfaces",
+            path.display()
+        ));
+    }
     bad_input(format!(
         "{}: field `type`: \"{}\" has no knots to operate on (knot operations take curves and surfaces)",
         path.display(),

@@ -1,6 +1,6 @@
 //! Subcommands that build objects: control points, interpolation, explicit and tensor
 //! splines, Bezier degree change, blending, piecewise polynomials, knot vectors and knot
-//! operations, swept surfaces.
+//! operations, slices, swept surfaces.
 //!
 //! - `make.rs`: `lekalo make`: curves from control points;
 //! - `make_surface.rs`: `lekalo make` of surfaces;
@@ -13,7 +13,8 @@
 //! - `jump.rs`: `lekalo blend jump`: the jump polynomials;
 //! - `pp.rs`: `lekalo pp`: piecewise polynomials and quasi-interpolation;
 //! - `knots.rs`: `lekalo knots`: knot vectors;
-//! - `knot.rs`: `lekalo knot`: knot operations on curves and surfaces;
+//! - `knot.rs`: `lekalo knot`: knot operations on curves, surfaces and splines in N parameters;
+//! - `slice.rs`: `lekalo slice`: splines in N parameters with some fixed, surfaces' iso-curves;
 //! - `sweep.rs`: `lekalo sweep`: surfaces of revolution, extrusions and ruled surfaces.
 
 pub(crate) mod bezier;
@@ -27,5 +28,6 @@ pub(crate) mod make;
 pub(crate) mod make_surface;
 pub(crate) mod make_tensor;
 pub(crate) mod pp;
+pub(crate) mod slice;
 pub(crate) mod sweep;
 pub(crate) mod tensor;
