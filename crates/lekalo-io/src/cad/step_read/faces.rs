@@ -76,7 +76,7 @@ enum Pcurves {
     AsWritten,
     /// A plane: the pcurves are the 3-D edges in the placement's coordinates.
     Plane(Placement),
-    /// Not kept, with the reason.
+    /// Not kept: an analytic surface other than a plane, by its entity name.
     Dropped(String),
 }
 
@@ -87,6 +87,8 @@ struct Use {
     vertices: [u64; 2],
     curve: Curve,
     pcurves: Vec<Curve>,
+    /// Whether the file gives the edge pcurves (on any surface).
+    written: bool,
 }
 
 /// The 3-D curve of an `EDGE_CURVE` from its start vertex to its end vertex, its vertices, the
@@ -195,11 +197,10 @@ fn read_face(
     } else if let Some(f) = rd.plane_placement(&sinst) {
         Pcurves::Plane(f)
     } else {
-        Pcurves::Dropped(format!(
-            "the file's pcurves are in the parameters of its {}, not in those of the NURBS surface lekalo builds for it",
-            sinst.type_name()
-        ))
+        Pcurves::Dropped(sinst.type_name().to_string())
     };
+    // whether any edge of the face comes with pcurves in the file
+    let mut written = false;
     let bounds = r
         .get(1)
         .and_then(list)
@@ -267,6 +268,7 @@ fn read_face(
                 }
             }
         }
+        written |= uses.iter().any(|u| u.written);
         closed_by_vertices &= uses
             .iter()
             .zip(uses.iter().cycle().skip(1))
@@ -305,7 +307,14 @@ fn read_face(
     )
     .map_err(|e| e.to_string())?;
     let pcurves = match policy {
-        Pcurves::Dropped(why) => Some(why),
+        Pcurves::Dropped(kind) if written => Some(format!(
+            "the file's pcurves are in the parameters of its {kind}, not in those of the NURBS \
+             surface lekalo builds for it"
+        )),
+        Pcurves::Dropped(kind) => Some(format!(
+            "the file gives none, and lekalo computes pcurves from the 3-D edges only on planes, \
+             not on its {kind}"
+        )),
         _ if missing > 0 => Some(match pcurve_error {
             Some(why) => format!("{missing} edge(s) without a pcurve read: {why}"),
             None => format!("{missing} edge(s) have no pcurve on this face's surface"),
@@ -422,6 +431,7 @@ fn edge_use(
         vertices,
         curve,
         pcurves,
+        written: !geom.pcurves.is_empty(),
     })
 }
 

@@ -266,7 +266,21 @@ fn cylinder_with_a_seam() {
     assert!(edges.iter().all(|e| e.pcurve().is_none()));
     let why = f.pcurves.as_deref().unwrap();
     assert!(why.contains("CYLINDRICAL_SURFACE"), "{why}");
+    assert!(
+        why.contains("the file's pcurves are in the parameters"),
+        "{why}"
+    );
     assert!(f.face.trim_region().is_err());
+    // the seam as a bare line, without the pcurves: the face says the file gives none
+    let bare = TUBE.replace(
+        "#232=EDGE_CURVE('',#212,#213,#216,.T.);",
+        "#232=EDGE_CURVE('',#212,#213,#215,.T.);",
+    );
+    let why = face(&read(&bare), 246).pcurves.clone().unwrap();
+    assert!(
+        why.contains("the file gives none") && why.contains("CYLINDRICAL_SURFACE"),
+        "{why}"
+    );
 }
 
 #[test]
