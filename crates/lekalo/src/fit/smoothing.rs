@@ -164,7 +164,9 @@ fn merged(data: &FitData<'_>) -> Result<Option<(Vec<f64>, Points)>> {
 /// The generalised cross-validation score of the smoothing spline with weight `λ > 0`
 /// (Craven & Wahba 1979): `V(λ) = (RSS_w(λ) / (N·d)) / (1 − tr A(λ)/N)²`, with
 /// `RSS_w = Σ_k w_k |Q_k − f_λ(ū_k)|²` over the `d` coordinates and
-/// `tr A = tr((BᵀWB + λΩ)⁻¹ BᵀWB)` from the band of the inverse. With unit weights and 1-D data
+/// `tr A = tr((BᵀWB + λΩ)⁻¹ BᵀWB)` from the band of the inverse, or, where it is the smaller,
+/// `N − tr A` from the band of the inverse in the basis of the natural splines (no cancellation
+/// near interpolation). With unit weights and 1-D data
 /// this is the score SciPy's `make_smoothing_spline` minimises. Near interpolation both the
 /// numerator and the denominator vanish; where either is within rounding of zero (`N − tr A <
 /// √ε·N`, or `RSS_w < ε·TSS_w`, the weighted total sum of squares about the weighted mean) the
@@ -188,6 +190,76 @@ pub fn gcv_score(data: &FitData<'_>, lambda: f64) -> Result<f64> {
 /// them each keeps about half its digits (a residual RMS of `√ε` times the data's spread is
 /// eight orders of magnitude above the rounding of the fitted values).
 pub(crate) const GCV_ROUNDING_SHARE: f64 = 1.490_116_119_384_765_6e-8;
+
+/// `Σ_ij X_ij Y_ij` of two symmetric matrices of half-bandwidth 3 stored as [`SymBand::a`]:
+/// `tr(XY)` where `X` is the band of a full symmetric matrix and `Y` banded.
+fn band_dot(x: &[f64], y: &SymBand) -> f64 {
+    let w = 4;
+    let mut sum = 0.0;
+    for i in 0..y.n {
+        for k in 0..w {
+            let v = x[i * w + k] * y.a[i * w + k];
+            sum += if k == 0 { v } else { 2.0 * v };
+        }
+    }
+    sum
+}
+
+/// The natural end conditions `f''(ū_0) = f''(ū_last) = 0` solved for the first and last
+/// coefficient: `c_0 = s_1 c_1 + s_2 c_2` and `c_last = e_1 c_(last−1) + e_2 c_(last−2)`. The
+/// other coefficients are the coordinates of the natural splines, `c = Z β`.
+struct NaturalEnds {
+    start: [f64; 2],
+    end: [f64; 2],
+}
+
+impl NaturalEnds {
+    /// From `B_0'', B_1'', B_2''` at the first parameter and `B_(last−2)'', B_(last−1)'',
+    /// B_last''` at the last.
+    fn new(start: [f64; 3], end: [f64; 3]) -> Self {
+        NaturalEnds {
+            start: [-start[1] / start[0], -start[2] / start[0]],
+            end: [-end[1] / end[2], -end[0] / end[2]],
+        }
+    }
+
+    /// `Zᵀ A Z` of a symmetric matrix `A` of half-bandwidth 3 over the `m + 2` coefficients:
+    /// order `m`, the same half-bandwidth (the ends fold into their neighbours).
+    fn reduce(&self, a: &SymBand) -> SymBand {
+        let nc = a.n;
+        let nd = nc - 2;
+        // the entries (j, z) of row i of Z
+        let row = |i: usize| -> [(usize, f64); 2] {
+            if i == 0 {
+                [(0, self.start[0]), (1, self.start[1])]
+            } else if i == nc - 1 {
+                [(nd - 1, self.end[0]), (nd - 2, self.end[1])]
+            } else {
+                // the second entry a zero pad
+                [(i - 1, 1.0), (i - 1, 0.0)]
+            }
+        };
+        let mut out = SymBand::zeros(nd, 3);
+        for i in 0..nc {
+            for l in i..(i + 4).min(nc) {
+                let v = a.a[i * 4 + l - i];
+                for (p, zp) in row(i) {
+                    for (q, zq) in row(l) {
+                        let c = zp * v * zq;
+                        // (ZᵀAZ)_pq gains Z_ip A_il Z_lq, and (for i ≠ l) Z_lp A_li Z_iq
+                        if p <= q {
+                            out.add(p, q, c);
+                        }
+                        if i != l && q <= p {
+                            out.add(q, p, c);
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+}
 
 /// The banded pieces of the problem, assembled once for all λ (also the objective of the
 /// shape-constrained smoothing spline, `super::shape`, and the smoother of each direction of
@@ -215,6 +287,11 @@ pub(crate) struct Smoother {
     /// `TSS_w = Σ_k w_k |Q_k − Q̄|²`, `Q̄` the weighted mean: the data's spread, the scale of
     /// the GCV score's rounding floor.
     spread: f64,
+    /// `ZᵀBᵀWBZ` and `ZᵀΩZ`, `Z` the basis of the natural splines (`f'' = 0` at both ends)
+    /// among the coefficients: the GCV score's residual degrees of freedom
+    /// ([`Smoother::residual_dof`]).
+    natural_gram: SymBand,
+    natural_omega: SymBand,
 }
 
 impl Smoother {
@@ -308,6 +385,9 @@ impl Smoother {
         let mut ders = [0.0; 12];
         let mut left = [0.0; 4];
         let mut right = [0.0; 4];
+        // B_0..B_2'' at the first parameter and B_(m−3)..B_(m−1)'' at the last: the natural
+        // end conditions
+        let (mut start, mut end) = ([0.0; 3], [0.0; 3]);
         for l in 0..nd - 1 {
             let span = l + 3;
             let h = xs[l + 1] - xs[l];
@@ -315,6 +395,12 @@ impl Smoother {
             left.copy_from_slice(&ders[8..12]);
             basis_ders_into(&knots, 3, span, xs[l + 1], 2, &mut scratch, &mut ders);
             right.copy_from_slice(&ders[8..12]);
+            if l == 0 {
+                start.copy_from_slice(&left[..3]);
+            }
+            if l == nd - 2 {
+                end.copy_from_slice(&right[1..]);
+            }
             let first = span - 3;
             for a in 0..4 {
                 for b in a..4 {
@@ -327,6 +413,9 @@ impl Smoother {
                 }
             }
         }
+        let ends = NaturalEnds::new(start, end);
+        let natural_gram = ends.reduce(&gram);
+        let natural_omega = ends.reduce(&omega);
         Ok(Smoother {
             n,
             dim,
@@ -341,6 +430,8 @@ impl Smoother {
             omega,
             rhs,
             spread,
+            natural_gram,
+            natural_omega,
         })
     }
 
@@ -368,16 +459,31 @@ impl Smoother {
     /// `tr A(λ) = tr((BᵀWB + λΩ)⁻¹ BᵀWB)` from the band of the inverse of the factored `m`
     /// (Hutchinson & de Hoog 1985; `docs/theory/fitting.md#gcv`). O(N).
     pub(crate) fn trace(&self, m: &SymBand) -> f64 {
-        let inv = m.inverse_band();
-        let w = 4;
-        let mut tr = 0.0;
-        for i in 0..m.n {
-            for k in 0..w {
-                let v = inv[i * w + k] * self.gram.a[i * w + k];
-                tr += if k == 0 { v } else { 2.0 * v };
-            }
+        band_dot(&m.inverse_band(), &self.gram)
+    }
+
+    /// `r = m − tr A(λ)` for `λ > 0`, `m` the distinct parameters: the residual degrees of
+    /// freedom of the GCV score, `N − tr A = N − m + r`. Of `r` and `tr A`, the smaller is
+    /// computed and the other is `m` minus it: `tr A` by [`Smoother::trace`] of `full`
+    /// (`BᵀWB + λΩ` factored); `r = λ·Σ_ij (M_Z⁻¹)_ij (Ω_Z)_ij`, `M_Z = Zᵀ(BᵀWB + λΩ)Z` in the
+    /// basis `Z` of the natural splines, where `ZᵀBᵀWBZ` is regular, so that nothing cancels as
+    /// `λ → 0` (`docs/theory/fitting.md#gcv`). O(N).
+    pub(crate) fn residual_dof(&self, lam: f64, full: &SymBand) -> f64 {
+        let trace = self.trace(full);
+        let mut mz = self.natural_gram.clone();
+        for (a, o) in mz.a.iter_mut().zip(&self.natural_omega.a) {
+            *a += lam * o;
         }
-        tr
+        let penalty = if mz.factor().is_ok() {
+            lam * band_dot(&mz.inverse_band(), &self.natural_omega)
+        } else {
+            f64::INFINITY
+        };
+        if penalty <= trace {
+            penalty
+        } else {
+            mz.n as f64 - trace
+        }
     }
 
     /// The refusal of a factorisation that found no positive pivot at coefficient `i`, naming
@@ -450,16 +556,15 @@ impl Smoother {
     fn gcv(&self, lam: f64) -> Result<f64> {
         let (c, m) = self.solve(lam)?;
         let rss = self.rss(&c);
-        let tr = self.trace(&m);
         let n = self.n as f64;
+        // 1 − tr A/N, the repeated points counted apart from r
+        let share = ((n - self.natural_gram.n as f64) + self.residual_dof(lam, &m)) / n;
         // near interpolation the score is 0/0 in rounding: not a candidate
-        if n - tr < GCV_ROUNDING_SHARE * n
-            || rss < GCV_ROUNDING_SHARE * GCV_ROUNDING_SHARE * self.spread
+        if share < GCV_ROUNDING_SHARE || rss < GCV_ROUNDING_SHARE * GCV_ROUNDING_SHARE * self.spread
         {
             return Ok(f64::INFINITY);
         }
-        let denom = 1.0 - tr / n;
-        Ok((rss / (n * self.dim as f64)) / (denom * denom))
+        Ok((rss / (n * self.dim as f64)) / (share * share))
     }
 
     /// λ minimising the GCV score: a scan in `log λ`, a point a decade, then Brent's method
@@ -727,6 +832,81 @@ mod tests {
             best.1,
             best.0
         );
+    }
+
+    /// `m − tr A` of the smoothing spline at the distinct parameters `x` with weights `w`, by
+    /// Reinsch's form `λ·tr((R + λP)⁻¹P)`, `P = QᵀW⁻¹Q` (Green & Silverman 1994, §2.3): a dense
+    /// elimination of the symmetric positive definite `R + λP`.
+    fn reinsch_residual(x: &[f64], w: &[f64], lam: f64) -> f64 {
+        let (m, k) = (x.len(), x.len() - 2);
+        let h: Vec<f64> = x.windows(2).map(|p| p[1] - p[0]).collect();
+        // column j of Q: 1/h_j, −1/h_j − 1/h_(j+1), 1/h_(j+1) at rows j, j + 1, j + 2
+        let q = |i: usize, j: usize| match i.wrapping_sub(j) {
+            0 => 1.0 / h[j],
+            1 => -1.0 / h[j] - 1.0 / h[j + 1],
+            2 => 1.0 / h[j + 1],
+            _ => 0.0,
+        };
+        let p: Vec<f64> = (0..k * k)
+            .map(|e| (0..m).map(|i| q(i, e / k) * q(i, e % k) / w[i]).sum())
+            .collect();
+        let mut a: Vec<f64> = (0..k * k)
+            .map(|e| {
+                let (i, j) = (e / k, e % k);
+                let r = match i.abs_diff(j) {
+                    0 => (h[i] + h[i + 1]) / 3.0,
+                    1 => h[i.max(j)] / 6.0,
+                    _ => 0.0,
+                };
+                r + lam * p[e]
+            })
+            .collect();
+        let mut b: Vec<f64> = p.iter().map(|v| lam * v).collect();
+        for c in 0..k {
+            for r in c + 1..k {
+                let f = a[r * k + c] / a[c * k + c];
+                for j in 0..k {
+                    a[r * k + j] -= f * a[c * k + j];
+                    b[r * k + j] -= f * b[c * k + j];
+                }
+            }
+        }
+        for r in (0..k).rev() {
+            for j in 0..k {
+                let s: f64 = (r + 1..k).map(|i| a[r * k + i] * b[i * k + j]).sum();
+                b[r * k + j] = (b[r * k + j] - s) / a[r * k + r];
+            }
+        }
+        (0..k).map(|j| b[j * k + j]).sum()
+    }
+
+    /// The residual degrees of freedom `m − tr A` near interpolation, with weights and a
+    /// repeated parameter, against Reinsch's form over the distinct parameters with the merged
+    /// weights: to rounding from `λ = tr(BᵀWB)/tr(Ω)` down to `10⁻¹³` times it, where `m` minus
+    /// `tr A` from the band of the inverse of `BᵀWB + λΩ` is 5e-5 off (relative) at `10⁻⁶` and
+    /// has no correct digit at `10⁻¹⁰`.
+    #[test]
+    fn residual_dof_near_interpolation_matches_reinsch() {
+        let x = [0.0, 0.4, 0.5, 0.5, 1.1, 1.3, 2.0, 2.2, 2.9, 3.0];
+        let w = [1.0, 2.0, 0.5, 1.5, 3.0, 1.0, 0.7, 1.0, 2.0, 1.0];
+        let y: Vec<f64> = x.iter().map(|t: &f64| t.sin()).collect();
+        let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x)
+            .unwrap()
+            .with_weights(&w)
+            .unwrap();
+        let s = Smoother::new(&data).unwrap();
+        let xs = [0.0, 0.4, 0.5, 1.1, 1.3, 2.0, 2.2, 2.9, 3.0];
+        let ws = [1.0, 2.0, 2.0, 3.0, 1.0, 0.7, 1.0, 2.0, 1.0];
+        let scale = 10f64.powf(s.gcv_scan().0 + 12.0);
+        for e in [0.0, -2.0, -4.0, -6.0, -8.0, -10.0, -12.0, -13.0] {
+            let lam = scale * 10f64.powf(e);
+            let r = s.residual_dof(lam, &s.factored(lam).unwrap());
+            let reference = reinsch_residual(&xs, &ws, lam);
+            assert!(
+                (r - reference).abs() <= 1e-11 * reference,
+                "λ = 1e{e} × scale: {r:e} vs {reference:e}"
+            );
+        }
     }
 
     #[test]
