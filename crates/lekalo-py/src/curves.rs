@@ -112,6 +112,35 @@ pub(crate) fn curve_to_py(py: Python<'_>, c: lekalo::Curve) -> PyResult<Py<PyAny
     })
 }
 
+/// One curve through `curves` in order, each over its own parameter interval after the
+/// previous one's: all raised to the highest degree, each join a knot of multiplicity
+/// degree, rational if any is (`lekalo::Curve::composite`, IGES 5.3 §4.4). A start that
+/// misses the previous end by at most `tolerance` (default 1e-9 of the largest coordinate,
+/// `Curve::composite_tolerance`) is moved onto it; a larger gap raises `lekalo.InputError`.
+///
+/// >>> import lekalo
+/// >>> a = lekalo.BSplineCurve(1, [0.0, 0.0, 1.0, 1.0], [[0.0, 0.0], [1.0, 0.0]])
+/// >>> b = lekalo.BSplineCurve(2, [0.0, 0.0, 0.0, 2.0, 2.0, 2.0], [[1.0, 0.0], [2.0, 0.0], [2.0, 1.0]])
+/// >>> c = lekalo.composite_curve([a, b])
+/// >>> c.degree, c.domain, c(3.0).tolist()
+/// (2, (0.0, 3.0), [2.0, 1.0])
+#[pyfunction]
+#[pyo3(signature = (curves, tolerance = None))]
+pub(crate) fn composite_curve(
+    py: Python<'_>,
+    curves: Vec<Bound<'_, PyAny>>,
+    tolerance: Option<f64>,
+) -> PyResult<Py<PyAny>> {
+    let members = curves
+        .iter()
+        .enumerate()
+        .map(|(k, c)| curve_of(c, &format!("curves[{k}]")))
+        .collect::<PyResult<Vec<_>>>()?;
+    let tol = tolerance.unwrap_or_else(|| lekalo::Curve::composite_tolerance(&members));
+    let c = detached(py, || lekalo::Curve::composite(&members, tol))?;
+    curve_to_py(py, c)
+}
+
 /// The library's curve of an object of any of the three curve classes (`what` names the
 /// argument in the error for any other object).
 pub(crate) fn curve_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<lekalo::Curve> {

@@ -101,6 +101,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(pp::bpoly_value, m)?)?;
     m.add_function(wrap_pyfunction!(periodic::insert_knot_periodic, m)?)?;
     m.add_function(wrap_pyfunction!(periodic::insert_knot_raw, m)?)?;
+    m.add_function(wrap_pyfunction!(curves::composite_curve, m)?)?;
     m.add_function(wrap_pyfunction!(pp::piecewise_hermite_bernstein, m)?)?;
     m.add_function(wrap_pyfunction!(batch::interpolate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::evaluate_batch, m)?)?;

@@ -74,8 +74,8 @@ pub mod curve;
 pub use curve::{
     bspline_value, bspline_value_by, curvature, insert_knot_into, insert_knot_periodic,
     insert_knot_raw, principal_normal, torsion, BSplineCurve, Beyond, BezierCurve, BezierSegment,
-    Curve, CurveEvaluator, EvalKernel, NurbsCurve, NurbsEvaluator, DEFAULT_REMOVAL_RTOL,
-    POWER_FORM_MAX_DEGREE,
+    Curve, CurveEvaluator, EvalKernel, NurbsCurve, NurbsEvaluator, COMPOSITE_GAP_RTOL,
+    DEFAULT_REMOVAL_RTOL, POWER_FORM_MAX_DEGREE,
 };
 
 // -- surfaces: tensor-product Bezier, B-spline, NURBS --

@@ -579,3 +579,78 @@ fn cad_files_past_max_size_are_refused_naming_the_count() {
         assert!(!p(&d, "small.json").exists(), "{ext}: nothing written");
     }
 }
+
+/// `knot join` of any curves: the halves of `split` give the curve back over its domain,
+/// a line and an arc become one rational curve, and a gap exits with 2 naming it.
+#[test]
+fn join_takes_any_curves_one_after_another() {
+    let d = dir_with(&[("c.json", CURVE)]);
+    lekalo()
+        .args(["knot", "split"])
+        .arg(p(&d, "c.json"))
+        .args(["--at", "0.3", "-o"])
+        .arg(p(&d, "halves.jsonl"))
+        .assert()
+        .success();
+    lekalo()
+        .args(["knot", "join"])
+        .arg(p(&d, "halves.jsonl"))
+        .arg("-o")
+        .arg(p(&d, "whole.json"))
+        .assert()
+        .success();
+    let text = |f: &str| fs::read_to_string(p(&d, f)).unwrap();
+    let (Shape::Curve(whole), Shape::Curve(c)) = (
+        Shape::from_json_str(&text("whole.json"), "w").unwrap(),
+        Shape::from_json_str(CURVE, "c").unwrap(),
+    ) else {
+        panic!("curves")
+    };
+    assert_eq!(whole.domain(), (0.0, 1.0));
+    for k in 0..=20 {
+        let t = f64::from(k) / 20.0;
+        let (a, b) = (whole.eval(t).unwrap(), c.eval(t).unwrap());
+        assert!(a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-14), "{t}");
+    }
+    // the curve's end (5, 0) on to a quarter circle about (5, 1): one NURBS of degree 2
+    let arc = r#"{"lekalo": 1, "type": "nurbs_curve", "degree": 2, "knots": [0, 0, 0, 1, 1, 1],
+ "control": [[5, 0], [6, 0], [6, 1]], "weights": [1, 0.7071067811865476, 1]}"#;
+    let line = |x: &str| x.replace('\n', "");
+    fs::write(
+        p(&d, "two.jsonl"),
+        format!("{}\n{}\n", line(CURVE), line(arc)),
+    )
+    .unwrap();
+    lekalo()
+        .args(["knot", "join"])
+        .arg(p(&d, "two.jsonl"))
+        .arg("-o")
+        .arg(p(&d, "two.json"))
+        .assert()
+        .success();
+    let Shape::Curve(two) = Shape::from_json_str(&text("two.json"), "t").unwrap() else {
+        panic!("a curve")
+    };
+    assert!(two.is_rational() && two.domain() == (0.0, 2.0));
+    let m = two.eval(1.5).unwrap();
+    assert!(
+        ((m[0] - 5.0).hypot(m[1] - 1.0) - 1.0).abs() < 1e-14,
+        "{m:?}"
+    );
+    // the arc moved off the curve's end: a gap of 0.5, named
+    fs::write(
+        p(&d, "gap.jsonl"),
+        format!(
+            "{}\n{}\n",
+            line(CURVE),
+            line(&arc.replace("[[5, 0]", "[[5.5, 0]"))
+        ),
+    )
+    .unwrap();
+    lekalo()
+        .args(["knot", "join"])
+        .arg(p(&d, "gap.jsonl"))
+        .assert()
+        .code(2)
+        .stderr(contains("member 2 starts 5e-1 from the end of member 1"));
+}

@@ -137,6 +137,7 @@ from ._lekalo import (
     piecewise_hermite_bernstein,
     insert_knot_periodic,
     insert_knot_raw,
+    composite_curve,
 )
 from . import _lekalo
 from ._interop import design_matrix, from_geomdl, from_scipy, to_geomdl, to_scipy
@@ -259,6 +260,7 @@ __all__ = [
     "piecewise_hermite_bernstein",
     "insert_knot_periodic",
     "insert_knot_raw",
+    "composite_curve",
     "ragged_offsets",
     "to_geomdl",
     "to_scipy",

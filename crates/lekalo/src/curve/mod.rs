@@ -18,6 +18,7 @@
 //!   [`antiderivative_knots_into`]) and [`integral_into`]: calculus on a spline given as arrays (SciPy's `(t, c, k)`), read in
 //!   place and written into the caller's buffers.
 //! - `nurbs.rs`: [`NurbsCurve`], a B-spline over homogeneous points.
+//! - `composite.rs`: [`Curve::composite`], curves joined end to end into one (IGES 102).
 //! - `conics.rs`: exact circles, circular and elliptic arcs as rational quadratics; straight
 //!   segments.
 //! - `nurbs_ops.rs`: knot operations on NURBS curves through their homogeneous B-spline.
@@ -32,6 +33,7 @@
 mod any;
 pub(crate) mod bezier;
 pub(crate) mod bspline;
+mod composite;
 mod conics;
 mod curvature;
 pub(crate) mod fast_eval;
@@ -48,6 +50,7 @@ mod tck;
 pub use any::Curve;
 pub use bezier::{BezierCurve, BezierSegment};
 pub use bspline::BSplineCurve;
+pub use composite::COMPOSITE_GAP_RTOL;
 pub use curvature::{curvature, principal_normal, torsion};
 pub(crate) use fast_eval::PieceLocator;
 pub use fast_eval::{Beyond, CurveEvaluator, EvalKernel, NurbsEvaluator, POWER_FORM_MAX_DEGREE};

@@ -1322,7 +1322,7 @@ fn a_rational_spline_continued_stays_on_its_conic_and_tensor_operations_keep_the
     s.par_eval_batch(&inside, &mut a).unwrap();
     s.par_eval_batch_extrapolated(&inside, &mut b).unwrap();
     assert_eq!(a, b, "inside the domain the same bits");
-    assert!(s.par_eval_batch(&outside, &mut vec![0.0; 9]).is_err());
+    assert!(s.par_eval_batch(&outside, &mut [0.0; 9]).is_err());
     let mut c = vec![0.0; 9];
     s.par_eval_batch_extrapolated(&outside, &mut c).unwrap();
     for (p, x) in c.chunks_exact(3).zip(outside.chunks_exact(2)) {

@@ -204,15 +204,23 @@ Examples:
         #[command(flatten)]
         c: Common,
     },
-    /// Join Bezier pieces (JSON Lines of single-segment curves, as `decompose` writes them)
-    /// into one B-spline or NURBS curve.
+    /// Join curves end to end (JSON Lines, in order; the Bezier pieces `decompose` writes, or
+    /// any curves) into one B-spline or NURBS curve (`lekalo::Curve::composite`).
     #[command(after_help = "\
+Each curve follows on over its own parameter interval, shifted to start where the previous
+one ends; all are raised to the highest degree, each join is a knot of multiplicity degree
+(C0), and the result is rational if any piece is.
+
 Examples:
   lekalo knot decompose curve.json -o pieces.jsonl
   lekalo knot join pieces.jsonl -o joined.json   # the curve again, its interior knots at multiplicity degree")]
     Join {
-        /// JSON Lines of the pieces, in order.
+        /// JSON Lines of the curves, in order.
         input: PathBuf,
+        /// Largest gap between one curve's end and the next one's start that is closed (the
+        /// start moved onto the end; default 1e-9 of the largest coordinate).
+        #[arg(long)]
+        tolerance: Option<f64>,
         /// Output file (default: standard output).
         #[arg(short, long, value_name = "FILE")]
         output: Option<PathBuf>,
@@ -395,9 +403,13 @@ pub(crate) fn run(a: &KnotArgs, cx: &Context) -> Result<()> {
             };
             write_many(c.output.as_deref(), &c.input, &pieces, cx)
         }
-        KnotOp::Join { input, output } => {
+        KnotOp::Join {
+            input,
+            output,
+            tolerance,
+        } => {
             let shapes = load_shapes(input, cx)?;
-            let joined = join(&shapes, input)?;
+            let joined = join(&shapes, input, *tolerance)?;
             emit(
                 output.as_deref(),
                 joined.to_json_pretty().as_bytes(),
@@ -464,7 +476,7 @@ fn removal_report(gone: &[(f64, usize)], removed: usize, tol: f64) -> String {
 }
 
 /// One curve from single-segment pieces in order ([`lekalo::Curve::join`]).
-fn join(shapes: &[Shape], input: &Path) -> Result<Shape> {
+fn join(shapes: &[Shape], input: &Path, tolerance: Option<f64>) -> Result<Shape> {
     let mut curves = Vec::with_capacity(shapes.len());
     for (k, s) in shapes.iter().enumerate() {
         let Shape::Curve(o) = s else {
@@ -477,7 +489,8 @@ fn join(shapes: &[Shape], input: &Path) -> Result<Shape> {
         };
         curves.push(o.clone());
     }
-    match Object::join(&curves) {
+    let tol = tolerance.unwrap_or_else(|| Object::composite_tolerance(&curves));
+    match Object::composite(&curves, tol) {
         Ok(c) => Ok(Shape::Curve(c)),
         Err(e) => bad_input(format!("{}: {e}", input.display())),
     }

@@ -22,6 +22,7 @@
 //! | file | subject |
 //! |---|---|
 //! | `splines.rs` | entities 110, 112 and 114 as exact B-splines |
+//! | `composite.rs` | independent composite curves (102) as one curve through their members, and their tests |
 //! | `conics.rs` | entities 100 (circular arc) and 104 (conic arc) as exact NURBS, and their tests |
 //! | `swept.rs` | entities 118 (ruled surface), 120 (surface of revolution) and 122 (tabulated cylinder) as exact NURBS from the curves they point at, and their tests |
 //! | `faces_write.rs` | faces written as trimmed surfaces (144 over 128, boundaries 142 with composite curves 102 of 126) |
@@ -34,6 +35,7 @@
 //! | `write.rs` | [`IgesWriter`]: entities 126 and 128 as Directory Entry and Parameter Data records |
 //! | `tests.rs` | round trips, hostile files, size limits and progress of the reader |
 
+mod composite;
 mod conics;
 mod faces;
 #[cfg(test)]

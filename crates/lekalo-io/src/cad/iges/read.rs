@@ -6,7 +6,7 @@ use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points, Pro
 
 use super::faces::{self, Raw};
 use super::fields::{count, fields, real, unit};
-use super::{conics, matrix, splines, swept, IgesRead};
+use super::{composite, conics, matrix, splines, swept, IgesRead};
 use crate::error::{IoError, IoResult, Location};
 use crate::object::Object;
 use crate::shape::{Shape, Surface};
@@ -14,6 +14,29 @@ use crate::step_read::{Skips, StepSkipped, SKIPPED_LISTED};
 
 /// Parameter `k` of an entity's fields as a real; the error names it and quotes what is
 /// written (a number beyond a double, `1.D+400`, or a word, `NaN`).
+/// Why an entity of the faces' topology is not read by [`read_iges`].
+const NOT_READ: &str = "not read (lekalo reads entities 100, 102, 104, 110, 112, 114, 118, 120, 122, 126 and 128; trimmed and bounded surfaces with their boundaries as faces, `--faces`)";
+
+/// The model-space curves of a boundary (entity 141: `TYPE, PREF, SPTR, N`, then per curve
+/// `CRVPT, SENSE, K, PSCPT(1..K)`; IGES 5.3 §4.26), as far as the fields go.
+fn boundary_curves(f: &[String]) -> Vec<usize> {
+    let at = |k: usize| f.get(k).and_then(|s| count(s));
+    let mut out = Vec::new();
+    let (mut k, n) = (5, at(4).unwrap_or(0));
+    for _ in 0..n {
+        let (Some(c), Some(m)) = (at(k), at(k + 2)) else {
+            break;
+        };
+        out.push(c);
+        out.extend((k + 3..k + 3 + m).filter_map(at));
+        k = k.saturating_add(3).saturating_add(m);
+    }
+    out
+}
+
+/// Why a composite curve (102) that another entity uses is not read as a curve.
+pub(super) const SUBORDINATE_COMPOSITE: &str = "a composite curve that another entity uses (a face's boundary, read with --faces); its member curves are read one by one";
+
 /// Why a swept surface (118, 120, 122) is not read when faces are.
 const SWEPT_IN_FACES: &str = "a swept surface (ruled surface, surface of revolution or tabulated cylinder) is read as a surface, not as the surface of a face: its NURBS parametrisation is not IGES's, so the curves of a boundary in its parameters would land elsewhere";
 
@@ -227,6 +250,10 @@ pub(super) fn read_entities(
     let mut skipped = Vec::new();
     // swept surfaces (118, 120, 122), built from their curves after the loop
     let mut sweeps = Vec::new();
+    // independent composite curves (102): (sequence number, member pointers, placement),
+    // and the curves that boundaries (141, 142) point at
+    let mut composites = Vec::new();
+    let mut pointed_at = std::collections::HashSet::new();
     let entities = d.len() / 2;
     if entities > max_size {
         return Err(IoError::OverLimit {
@@ -283,18 +310,27 @@ pub(super) fn read_entities(
         if !keep
             && !matches!(
                 ty.as_str(),
-                "100" | "104" | "110" | "112" | "114" | "118" | "120" | "122" | "126" | "128"
+                "100"
+                    | "102"
+                    | "104"
+                    | "141"
+                    | "142"
+                    | "110"
+                    | "112"
+                    | "114"
+                    | "118"
+                    | "120"
+                    | "122"
+                    | "126"
+                    | "128"
             )
         {
             if matches!(
                 ty.as_str(),
-                "102"
-                    | "106"
+                "106"
                     | "108"
                     | "130"
                     | "140"
-                    | "141"
-                    | "142"
                     | "143"
                     | "144"
                     | "190"
@@ -306,8 +342,7 @@ pub(super) fn read_entities(
                 skipped.push(StepSkipped {
                     id: seq,
                     entity: format!("IGES entity {ty}"),
-                    reason: "not read (lekalo reads entities 100, 104, 110, 112, 114, 118, 120, 122, 126 and 128)"
-                        .into(),
+                    reason: NOT_READ.into(),
                 });
             }
             continue;
@@ -392,6 +427,57 @@ pub(super) fn read_entities(
             );
             continue;
         }
+        // The counts are checked against the parameters the entity holds before anything is
+        // allocated: a declared size the file cannot back (a 23170 × 23170 net in a few lines)
+        // is refused, and so is one whose arithmetic would overflow.
+        let needs = |what: String, sizes: &[Option<usize>]| -> IoResult<()> {
+            let total = sizes.iter().try_fold(0usize, |sum, &x| sum.checked_add(x?));
+            match total {
+                Some(t) if t <= f.len() => Ok(()),
+                Some(t) => Err(bad(format!(
+                    "{what} need {t} parameters, the entity has {}; the counts or the parameter data are wrong",
+                    f.len()
+                ))),
+                None => Err(bad(format!(
+                    "{what} need more parameters than any file holds; the counts are wrong"
+                ))),
+            }
+        };
+        if ty == "141" || ty == "142" {
+            // not read without the faces; the curves they point at are boundaries, so a
+            // composite among them is not built as a curve of its own
+            let pointers: Vec<usize> = if ty == "142" {
+                [3, 4]
+                    .iter()
+                    .filter_map(|&k| f.get(k).and_then(|s| count(s)))
+                    .collect()
+            } else {
+                boundary_curves(&f)
+            };
+            pointed_at.extend(pointers.into_iter().map(|x| x as u64));
+            skipped.push(StepSkipped {
+                id: seq,
+                entity: format!("IGES entity {ty}"),
+                reason: NOT_READ.into(),
+            });
+            continue;
+        }
+        if ty == "102" {
+            // built once every curve is read: the members are anywhere in the file
+            if !alone {
+                skipped.push(StepSkipped {
+                    id: seq,
+                    entity: "IGES entity 102".into(),
+                    reason: SUBORDINATE_COMPOSITE.into(),
+                });
+                continue;
+            }
+            let n = c(1)?;
+            needs(format!("N = {n} (constituent curves)"), &[Some(2), Some(n)])?;
+            let members = (2..n + 2).map(c).collect::<IoResult<Vec<usize>>>()?;
+            composites.push((seq, members, motion));
+            continue;
+        }
         if ty == "118" || ty == "120" || ty == "122" {
             // built once every curve is read: they point at curves anywhere in the file
             let v = (1..=4).map(r).collect::<IoResult<Vec<f64>>>()?;
@@ -447,22 +533,6 @@ pub(super) fn read_entities(
             shapes.push((seq, place(shape, motion.as_ref()).map_err(lib)?));
             continue;
         }
-        // The counts are checked against the parameters the entity holds before anything is
-        // allocated: a declared size the file cannot back (a 23170 × 23170 net in a few lines)
-        // is refused, and so is one whose arithmetic would overflow.
-        let needs = |what: String, sizes: &[Option<usize>]| -> IoResult<()> {
-            let total = sizes.iter().try_fold(0usize, |sum, &x| sum.checked_add(x?));
-            match total {
-                Some(t) if t <= f.len() => Ok(()),
-                Some(t) => Err(bad(format!(
-                    "{what} need {t} parameters, the entity has {}; the counts or the parameter data are wrong",
-                    f.len()
-                ))),
-                None => Err(bad(format!(
-                    "{what} need more parameters than any file holds; the counts are wrong"
-                ))),
-            }
-        };
         if ty == "126" {
             let (k, m, poly) = (c(1)?, c(2)?, c(5)? == 1);
             let n = k.checked_add(1);
@@ -550,6 +620,14 @@ pub(super) fn read_entities(
             shapes.push((seq, place(Shape::Surface(s), motion.as_ref()).map_err(lib)?));
         }
     }
+    composite::build(
+        composites,
+        &pointed_at,
+        &mut shapes,
+        &mut skipped,
+        (resolution_mm, max_size),
+        |s, m| place(s, m).map_err(|e| e.to_string()),
+    );
     if !sweeps.is_empty() {
         let curves: std::collections::HashMap<u64, usize> = shapes
             .iter()
