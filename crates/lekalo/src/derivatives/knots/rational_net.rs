@@ -32,6 +32,17 @@ fn quotient_tangent(
     }
 }
 
+/// `S = A / W` at every point from the homogeneous values `hom` (`dim + 1` a point) into
+/// `out`, one division a coordinate: the values the evaluation itself computes, since it
+/// projects the same homogeneous values (P&T eq. 4.5).
+fn project(dim: usize, hom: &[f64], out: &mut [f64]) {
+    for (o, h) in out.chunks_exact_mut(dim).zip(hom.chunks_exact(dim + 1)) {
+        for (x, a) in o.iter_mut().zip(h) {
+            *x = a / h[dim];
+        }
+    }
+}
+
 /// The homogeneous cotangent `ĝ = (ḡ / W, −(ḡ · S) / W)` at every point, `S = A / W`, from
 /// the homogeneous values `hom` (`dim + 1` a point) and the cotangent `g` (`dim` a point),
 /// written over `hom`.
@@ -106,7 +117,7 @@ impl NurbsSurface {
             &mut hom,
             &mut hom_tangent,
         )?;
-        self.eval_batch(uv, out)?;
+        project(dim, &hom, out);
         quotient_tangent(dim, out, &hom, &hom_tangent, tangent_out);
         Ok(())
     }
@@ -181,7 +192,7 @@ impl TensorNurbs {
         let hlen = check_scalars("homogeneous values (points)", m, dim + 1)?;
         let (mut hom, mut hom_tangent) = (vec![0.0; hlen], vec![0.0; hlen]);
         h.eval_batch_knot_jvp(xs, knot_tangents, &mut hom, &mut hom_tangent)?;
-        self.eval_batch(xs, out)?;
+        project(dim, &hom, out);
         quotient_tangent(dim, out, &hom, &hom_tangent, tangent_out);
         Ok(())
     }
