@@ -164,41 +164,22 @@ fn a_surface_slice_is_its_iso_curve() {
     let iso: serde_json::Value =
         serde_json::from_str(&fs::read_to_string(d.path().join("iso.json")).unwrap()).unwrap();
     assert!(iso["type"].as_str().unwrap().ends_with("_curve"), "{iso}");
+    // `lekalo eval FILE OPTION VALUE`'s first point, `x, y, z`
+    let point = |file: &str, option: &str, value: &str| -> Vec<f64> {
+        let out = lekalo()
+            .current_dir(d.path())
+            .args(["eval", file, option, value, "--format", "json"])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        let e: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        ["x", "y", "z"].map(|k| e[0][k].as_f64().unwrap()).to_vec()
+    };
     for u in [0.0, 0.35, 1.0] {
-        let out = lekalo()
-            .current_dir(d.path())
-            .args([
-                "eval",
-                "iso.json",
-                "--at",
-                &u.to_string(),
-                "--format",
-                "json",
-            ])
-            .assert()
-            .success()
-            .get_output()
-            .stdout
-            .clone();
-        let e: serde_json::Value = serde_json::from_slice(&out).unwrap();
-        let c: Vec<f64> = ["x", "y", "z"].map(|k| e[0][k].as_f64().unwrap()).to_vec();
-        let out = lekalo()
-            .current_dir(d.path())
-            .args([
-                "eval",
-                "s.json",
-                "--uv",
-                &format!("{u},0.3"),
-                "--format",
-                "json",
-            ])
-            .assert()
-            .success()
-            .get_output()
-            .stdout
-            .clone();
-        let e: serde_json::Value = serde_json::from_slice(&out).unwrap();
-        let s: Vec<f64> = ["x", "y", "z"].map(|k| e[0][k].as_f64().unwrap()).to_vec();
+        let c = point("iso.json", "--at", &u.to_string());
+        let s = point("s.json", "--uv", &format!("{u},0.3"));
         // the iso-curve's evaluation is the surface's along v first: equal to rounding
         close(&[c], &[s]);
     }
