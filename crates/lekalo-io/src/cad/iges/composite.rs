@@ -9,6 +9,9 @@ use lekalo::Curve;
 use crate::cad::motion::Motion;
 use crate::{Shape, StepSkipped};
 
+/// Why a composite curve (102) that another entity uses is not read as a curve.
+pub(super) const SUBORDINATE_COMPOSITE: &str = "a composite curve that another entity uses (a face's boundary, read with --faces); its member curves are read one by one";
+
 /// A composite curve of the file: its sequence number, its members' directory pointers and
 /// its placement.
 pub(super) type Composite = (u64, Vec<usize>, Option<Motion>);
@@ -48,7 +51,7 @@ pub(super) fn build(
     let mut built = Vec::new();
     for (seq, _, motion) in &composites {
         let reason = if used.contains(seq) || members.contains(seq) {
-            Err(super::read::SUBORDINATE_COMPOSITE.to_string())
+            Err(SUBORDINATE_COMPOSITE.to_string())
         } else {
             ctx.joined(*seq, 0)
                 .and_then(|c| place(Shape::Curve(c), motion.as_ref()))

@@ -4,9 +4,10 @@
 
 use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points, Progress};
 
+use super::composite::{self, SUBORDINATE_COMPOSITE};
 use super::faces::{self, Raw};
 use super::fields::{count, fields, real, unit};
-use super::{composite, conics, matrix, splines, swept, IgesRead};
+use super::{conics, matrix, splines, swept, IgesRead};
 use crate::error::{IoError, IoResult, Location};
 use crate::object::Object;
 use crate::shape::{Shape, Surface};
@@ -33,9 +34,6 @@ fn boundary_curves(f: &[String]) -> Vec<usize> {
     }
     out
 }
-
-/// Why a composite curve (102) that another entity uses is not read as a curve.
-pub(super) const SUBORDINATE_COMPOSITE: &str = "a composite curve that another entity uses (a face's boundary, read with --faces); its member curves are read one by one";
 
 /// Why a swept surface (118, 120, 122) is not read when faces are.
 const SWEPT_IN_FACES: &str = "a swept surface (ruled surface, surface of revolution or tabulated cylinder) is read as a surface, not as the surface of a face: its NURBS parametrisation is not IGES's, so the curves of a boundary in its parameters would land elsewhere";
