@@ -1,5 +1,6 @@
 //! End-to-end tests of `lekalo fit --grid NUxNV` and `--scattered` with shape constraints:
-//! `--increasing[=u|v]`, `--decreasing[=u|v]`, `--min V`, `--max V`.
+//! `--increasing[=u|v]`, `--decreasing[=u|v]`, `--min V`, `--max V`, on the whole domain or on
+//! a box (`@U0:U1,V0:V1`).
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
@@ -121,21 +122,29 @@ fn scattered_rows_keep_bounds_and_a_direction() {
             "0",
             "--max",
             "0.8",
+            "--max",
+            "0.5@0:0.25,0.5:0.9",
             "--json",
         ],
         &rows,
     );
     assert_eq!(
         v["report"]["constraints"],
-        serde_json::json!(["decreasing in v", "min 0", "max 0.8"])
+        serde_json::json!([
+            "decreasing in v",
+            "min 0",
+            "max 0.8",
+            "max 0.5 on [0, 0.25] × [0.5, 0.9]"
+        ])
     );
     let c = SurfaceShapeConstraints::new()
         .with(SurfaceShape::Decreasing(Direction::V))
         .with(SurfaceShape::AtLeast(0.0))
-        .with(SurfaceShape::AtMost(0.8));
+        .with(SurfaceShape::AtMost(0.8))
+        .with_on(SurfaceShape::AtMost(0.5), (0.0, 0.25), (0.5, 0.9));
     assert_eq!(
         surface_shape_violations(&s, &c).unwrap(),
-        vec![0.0, 0.0, 0.0]
+        vec![0.0, 0.0, 0.0, 0.0]
     );
 }
 
@@ -149,7 +158,12 @@ fn surface_shapes_refuse_what_they_cannot_keep() {
         ),
         (&["--convex"], "--convex is a shape of curves"),
         (&["--increasing=w"], "--increasing=u, --increasing=v"),
-        (&["--min", "0@0:1"], "whole domain"),
+        (&["--min", "0@0:1"], "is not a box U0:U1,V0:V1"),
+        (
+            &["--increasing=u@0:2,0:1"],
+            "leaves the domain [0, 1] of the fit in u",
+        ),
+        (&["--min", "x@0:1,0:1"], "is not V or V@U0:U1,V0:V1"),
     ] {
         lekalo()
             .args([&grid[..], flags].concat())
@@ -177,4 +191,65 @@ fn surface_shapes_refuse_what_they_cannot_keep() {
         .assert()
         .code(2)
         .stderr(contains("off the table's lines"));
+}
+
+#[test]
+fn a_shape_on_a_box_holds_there_only() {
+    // the table falls in u left of u = 0.4 and rises after: increasing in u on the right part
+    let mut rows = String::new();
+    for i in 0..21 {
+        for j in 0..11 {
+            let (u, v) = (f64::from(i) / 20.0, f64::from(j) / 10.0);
+            let z = (u - 0.4) * (u - 0.4) + 0.3 * v + 0.08 * (23.0 * u + 5.0 * v).sin();
+            writeln!(rows, "{u} {v} {z}").unwrap();
+        }
+    }
+    let fit = [
+        "fit",
+        "-",
+        "--grid",
+        "21x11",
+        "--ctrl-grid",
+        "9x6",
+        "--degree",
+        "2",
+        "--json",
+    ];
+    // the plain fit of z(u, v): a bound it keeps returns it unchanged
+    let (free, _) = surface_of(&[&fit[..], &["--max", "1000"]].concat(), &rows);
+    let boxed = SurfaceShapeConstraints::new().with_on(
+        SurfaceShape::Increasing(Direction::U),
+        (0.45, 1.0),
+        (0.1, 0.9),
+    );
+    let minimum =
+        SurfaceShapeConstraints::new().with_on(SurfaceShape::AtLeast(0.05), (0.3, 0.5), (0.0, 1.0));
+    assert!(surface_shape_violations(&free, &boxed).unwrap()[0] > 1e-3);
+    assert!(surface_shape_violations(&free, &minimum).unwrap()[0] > 1e-3);
+    let (s, v) = surface_of(
+        &[
+            &fit[..],
+            &["--increasing=u@0.45:1,0.1:0.9", "--min", "0.05@0.3:0.5,0:1"],
+        ]
+        .concat(),
+        &rows,
+    );
+    // --json on a grid: the object and its report
+    assert_eq!(
+        v["report"]["constraints"],
+        serde_json::json!([
+            "increasing in u on [0.45, 1] × [0.1, 0.9]",
+            "min 0.05 on [0.3, 0.5] × [0, 1]"
+        ])
+    );
+    assert_eq!(v["report"]["control_points"], 54);
+    let rms = v["report"]["rms"].as_f64().unwrap();
+    assert!(rms > 0.0 && rms < 0.1, "{rms}");
+    assert_eq!(surface_shape_violations(&s, &boxed).unwrap(), vec![0.0]);
+    assert_eq!(surface_shape_violations(&s, &minimum).unwrap(), vec![0.0]);
+    // left of the box the fit still falls in u, as the data do
+    let (mut a, mut b) = ([0.0], [0.0]);
+    s.eval_into(0.05, 0.5, &mut a).unwrap();
+    s.eval_into(0.25, 0.5, &mut b).unwrap();
+    assert!(b[0] < a[0], "{a:?} {b:?}");
 }

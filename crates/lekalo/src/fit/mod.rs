@@ -91,7 +91,7 @@ pub use shape::{
 };
 pub use shape::{
     constrained_surface_grid_least_squares, constrained_surface_scattered_least_squares,
-    surface_shape_violations, SurfaceShape, SurfaceShapeConstraints,
+    surface_shape_violations, SurfaceShape, SurfaceShapeConstraint, SurfaceShapeConstraints,
 };
 pub(crate) use smoothing::{
     brent_min, smoothing_system, smoothing_values_and_system, Smoother, SmoothingSystem,

@@ -66,8 +66,9 @@ every x, not only at the data; repeat an option for several intervals; =X or @X:
   --min V[@A:B] --max V[@A:B]   bounds on y;  --through X=V  y(X) = V;  --slope-at X=V  y'(X) = V
   --integral A:B=V  the integral of y over [A, B];  with --periodic (--lsq): a periodic y(x)
 A surface z(u, v) (--grid NUxNV of rows u,v,z or of one value per node at --params-u/-v, or
---scattered rows u,v,z; least squares, with --penalty for scattered rows) keeps on its whole
-domain: --increasing[=u|v|u,v] --decreasing[=u|v|u,v] (bare: both directions) --min V --max V
+--scattered rows u,v,z; least squares, with --penalty for scattered rows) keeps, on its whole
+domain or with @U0:U1,V0:V1 on a box: --increasing[=u|v|u,v] --decreasing[=u|v|u,v] (bare: both
+directions) --min V --max V
 
 The report (residual max and RMS, λ or s, control points; with --tolerance the residuals are
 the deviations the tolerance bounds, at each point's closest point, all within it)
@@ -242,11 +243,11 @@ pub(crate) struct FitArgs {
     #[arg(long, default_value_t = 0.0)]
     pub(super) penalty: f64,
     /// Keep y(x) increasing (y' ≥ 0) everywhere, with `=A:B` on [A, B], or with `=X` at the point X;
-    /// a surface in `=u`, `=v` or both (bare).
+    /// a surface in `=u`, `=v` or both (bare), `=u@U0:U1,V0:V1` on a box.
     #[arg(long, value_name = "A:B|u|v", num_args = 0..=1, require_equals = true, default_missing_value = "", action = ArgAction::Append)]
     pub(super) increasing: Vec<String>,
     /// Keep y(x) decreasing (y' ≤ 0) everywhere, with `=A:B` on [A, B], or with `=X` at the point X;
-    /// a surface in `=u`, `=v` or both (bare).
+    /// a surface in `=u`, `=v` or both (bare), `=u@U0:U1,V0:V1` on a box.
     #[arg(long, value_name = "A:B|u|v", num_args = 0..=1, require_equals = true, default_missing_value = "", action = ArgAction::Append)]
     pub(super) decreasing: Vec<String>,
     /// Keep y(x) convex (y'' ≥ 0) everywhere, with `=A:B` on [A, B], or with `=X` at the point X.
@@ -255,10 +256,10 @@ pub(crate) struct FitArgs {
     /// Keep y(x) concave (y'' ≤ 0) everywhere, with `=A:B` on [A, B], or with `=X` at the point X.
     #[arg(long, value_name = "A:B", num_args = 0..=1, require_equals = true, default_missing_value = "", action = ArgAction::Append)]
     pub(super) concave: Vec<String>,
-    /// Lower bound y ≥ V everywhere, `V@A:B` on [A, B], or `V@X` at the point X (a surface: V).
+    /// Lower bound y ≥ V everywhere, `V@A:B` on [A, B], or `V@X` at the point X (a surface: V, or V@U0:U1,V0:V1 on a box).
     #[arg(long, value_name = "V[@A:B|@X]", allow_hyphen_values = true, action = ArgAction::Append)]
     pub(super) min: Vec<String>,
-    /// Upper bound y ≤ V everywhere, `V@A:B` on [A, B], or `V@X` at the point X (a surface: V).
+    /// Upper bound y ≤ V everywhere, `V@A:B` on [A, B], or `V@X` at the point X (a surface: V, or V@U0:U1,V0:V1 on a box).
     #[arg(long, value_name = "V[@A:B|@X]", allow_hyphen_values = true, action = ArgAction::Append)]
     pub(super) max: Vec<String>,
     /// A point the fit passes through: `X=V` for y(X) = V.

@@ -1,7 +1,8 @@
 //! The shape constraints of `lekalo fit`'s options (`--increasing`, `--convex`, `--min`,
 //! `--through`, `--integral` …), read into the library's `ShapeConstraints`
 //! (`docs/theory/fitting.md#shape-constraints`), for the curve fits and the periodic ones, and
-//! the surfaces' (`--increasing=u`, `--min V`) into `SurfaceShapeConstraints`.
+//! the surfaces' (`--increasing=u`, `--min V`, each on a box with `@U0:U1,V0:V1`) into
+//! `SurfaceShapeConstraints`.
 
 use anyhow::Result;
 use lekalo::fit::{Shape, ShapeConstraints, SurfaceShape, SurfaceShapeConstraints};
@@ -89,9 +90,30 @@ pub(super) fn shape_constraints(a: &FitArgs) -> Result<ShapeConstraints> {
     Ok(c)
 }
 
+/// The box `U0:U1,V0:V1` of a surface's shape (`@…` of `--increasing=u@…`, `--min V@…`); a
+/// range may be one number, a line of the domain.
+fn surface_box(text: &str, option: &str) -> Result<((f64, f64), (f64, f64))> {
+    let range = |part: &str| -> Option<(f64, f64)> {
+        match numbers(&part.replacen(':', ",", 1), option).ok()?[..] {
+            [a, b] => Some((a, b)),
+            [x] => Some((x, x)),
+            _ => None,
+        }
+    };
+    if let Some((u, v)) = text.split_once(',') {
+        if let (Some(u), Some(v)) = (range(u), range(v)) {
+            return Ok((u, v));
+        }
+    }
+    bad_input(format!(
+        "{option}: \"{text}\" is not a box U0:U1,V0:V1 of the surface's domain (e.g. @0:0.5,0:1)"
+    ))
+}
+
 /// The shape constraints of a surface `z(u, v)` (`--grid NUxNV` or `--scattered`): `--increasing`
 /// and `--decreasing` with a direction `=u`, `=v` or `=u,v` (both when bare), `--min V` and
-/// `--max V` on the whole domain (`docs/theory/fitting.md#shape-constraints-of-surfaces`).
+/// `--max V`, each on the whole domain or, after `@U0:U1,V0:V1`, on that box
+/// (`docs/theory/fitting.md#shape-constraints-of-surfaces`).
 pub(super) fn surface_shape_constraints(a: &FitArgs) -> Result<SurfaceShapeConstraints> {
     let curve_only = [
         (!a.convex.is_empty(), "--convex"),
@@ -103,51 +125,66 @@ pub(super) fn surface_shape_constraints(a: &FitArgs) -> Result<SurfaceShapeConst
     if let Some((_, option)) = curve_only.iter().find(|(given, _)| *given) {
         return bad_input(format!(
             "{option} is a shape of curves y(x); a surface keeps --increasing[=u|v], \
-             --decreasing[=u|v], --min V and --max V"
+             --decreasing[=u|v], --min V and --max V (each with @U0:U1,V0:V1 for a box)"
         ));
     }
     let mut c = SurfaceShapeConstraints::new();
+    let add = |c: SurfaceShapeConstraints, shape, on: Option<((f64, f64), (f64, f64))>| match on {
+        None => c.with(shape),
+        Some((u, v)) => c.with_on(shape, u, v),
+    };
     for (list, option) in [
         (&a.increasing, "--increasing"),
         (&a.decreasing, "--decreasing"),
     ] {
         for text in list {
-            let words: Vec<&str> = if text.is_empty() {
+            let (directions, on) = match text.split_once('@') {
+                Some((d, b)) => (d, Some(surface_box(b, option)?)),
+                None => (text.as_str(), None),
+            };
+            let words: Vec<&str> = if directions.is_empty() {
                 vec!["u", "v"]
             } else {
-                text.split(',').collect()
+                directions.split(',').collect()
             };
             for w in words {
                 let Ok(d) = lekalo::vocabulary::DIRECTION.parse(w) else {
                     return bad_input(format!(
                         "{option}={text}: a surface is monotone in a direction: write \
-                         {option}=u, {option}=v, or {option} alone for both"
+                         {option}=u, {option}=v, or {option} alone for both (add \
+                         @U0:U1,V0:V1 for a box)"
                     ));
                 };
-                c = c.with(if option == "--increasing" {
+                let shape = if option == "--increasing" {
                     SurfaceShape::Increasing(d.value)
                 } else {
                     SurfaceShape::Decreasing(d.value)
-                });
+                };
+                c = add(c, shape, on);
             }
         }
     }
     for (list, option) in [(&a.min, "--min"), (&a.max, "--max")] {
         for text in list {
-            let v = match numbers(text, option).ok().as_deref() {
+            let (v, on) = match text.split_once('@') {
+                Some((v, b)) => (v, Some(surface_box(b, option)?)),
+                None => (text.as_str(), None),
+            };
+            let v = match numbers(v, option).ok().as_deref() {
                 Some(&[v]) => v,
                 _ => {
                     return bad_input(format!(
-                        "{option}: \"{text}\" is not a number; a surface's bound holds on its \
-                         whole domain (no @A:B)"
+                        "{option}: \"{text}\" is not V or V@U0:U1,V0:V1 (a bound of the \
+                         surface's values, everywhere or on a box)"
                     ))
                 }
             };
-            c = c.with(if option == "--min" {
+            let shape = if option == "--min" {
                 SurfaceShape::AtLeast(v)
             } else {
                 SurfaceShape::AtMost(v)
-            });
+            };
+            c = add(c, shape, on);
         }
     }
     Ok(c)

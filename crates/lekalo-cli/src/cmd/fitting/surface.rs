@@ -7,7 +7,7 @@ use anyhow::Result;
 use lekalo::fit::{
     constrained_surface_grid_least_squares, constrained_surface_scattered_least_squares,
     place_knots, surface_grid_least_squares_at, surface_grid_parameters,
-    surface_scattered_least_squares_with_progress,
+    surface_scattered_least_squares_with_progress, SurfaceShapeConstraints,
 };
 use lekalo::{KnotVector, Points};
 use serde_json::{json, Value};
@@ -133,6 +133,26 @@ pub(super) fn run_surface(
                 (&ku, &kv),
             )?,
         };
+        if a.json {
+            // the residuals at the grid: |z(u_i, v_j) − z_ij| for a table, the distances to the
+            // grid's points otherwise
+            let data = table.as_ref().map_or(pts, |(_, _, z)| z);
+            let dim = data.dim();
+            let mut at = vec![0.0; uu.len() * vv.len() * dim];
+            s.eval_grid(&uu, &vv, &mut at)?;
+            let residuals: Vec<f64> = at
+                .chunks_exact(dim)
+                .zip(data.iter())
+                .map(|(f, d)| {
+                    f.iter()
+                        .zip(d)
+                        .map(|(x, y)| (x - y) * (x - y))
+                        .sum::<f64>()
+                        .sqrt()
+                })
+                .collect();
+            return emit_report(a, &s, &residuals, None, &shapes, inputs, cx);
+        }
         return write_surface(&s, &a.out, inputs, cx);
     }
     if pts.dim() < 3 {
@@ -206,29 +226,51 @@ pub(super) fn run_surface(
             &shapes,
         )?
     };
+    if a.json {
+        let scattered = Some((f.weighted_rss, a.penalty));
+        return emit_report(a, &f.surface, &f.residuals, scattered, &shapes, inputs, cx);
+    }
     let max = f.residuals.iter().fold(0.0_f64, |m, &r| m.max(r));
     let rms = (f.residuals.iter().map(|r| r * r).sum::<f64>() / f.residuals.len() as f64).sqrt();
-    let mut report = json!({ "max_residual": max, "rms": rms, "weighted_rss": f.weighted_rss,
-        "control_points": ncu * ncv, "penalty": a.penalty });
-    if !shapes.is_empty() {
-        report["constraints"] = json!((0..shapes.len())
-            .map(|i| shapes.describe(i))
-            .collect::<Vec<_>>());
-    }
-    if a.per_point {
-        report["residuals"] = json!(f.residuals);
-    }
-    if a.json {
-        let object: Value = serde_json::from_str(&lekalo_io::bspline_surface_to_json(&f.surface))?;
-        let text = serde_json::to_string_pretty(&json!({ "object": object, "report": report }))?;
-        return emit(a.out.output.as_deref(), text.as_bytes(), inputs, cx);
-    }
     if !cx.is_quiet() {
         crate::output::report(&format!(
             "fit: {ncu}x{ncv} control points, residual max {max}, RMS {rms}"
         ));
     }
     write_surface(&f.surface, &a.out, inputs, cx)
+}
+
+/// `{"object", "report"}` of a surface fit (`--json`): the largest and RMS residual, the
+/// control points, the constraints kept, and for scattered rows the weighted residual sum and
+/// the penalty; `--per-point` adds every residual.
+fn emit_report(
+    a: &FitArgs,
+    surface: &lekalo::BSplineSurface,
+    residuals: &[f64],
+    scattered: Option<(f64, f64)>,
+    shapes: &SurfaceShapeConstraints,
+    inputs: &[PathBuf],
+    cx: &Context,
+) -> Result<()> {
+    let max = residuals.iter().fold(0.0_f64, |m, &r| m.max(r));
+    let rms = (residuals.iter().map(|r| r * r).sum::<f64>() / residuals.len().max(1) as f64).sqrt();
+    let (ncu, ncv) = surface.net_size();
+    let mut report = json!({ "max_residual": max, "rms": rms, "control_points": ncu * ncv });
+    if let Some((weighted_rss, penalty)) = scattered {
+        report["weighted_rss"] = json!(weighted_rss);
+        report["penalty"] = json!(penalty);
+    }
+    if !shapes.is_empty() {
+        report["constraints"] = json!((0..shapes.len())
+            .map(|i| shapes.describe(i))
+            .collect::<Vec<_>>());
+    }
+    if a.per_point {
+        report["residuals"] = json!(residuals);
+    }
+    let object: Value = serde_json::from_str(&lekalo_io::bspline_surface_to_json(surface))?;
+    let text = serde_json::to_string_pretty(&json!({ "object": object, "report": report }))?;
+    emit(a.out.output.as_deref(), text.as_bytes(), inputs, cx)
 }
 
 /// The table `z(u, v)` a grid with shape constraints holds: one value per node at the

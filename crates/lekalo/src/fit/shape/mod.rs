@@ -44,7 +44,7 @@ pub use fits::{
 };
 pub use surface::{
     constrained_surface_grid_least_squares, constrained_surface_scattered_least_squares,
-    surface_shape_violations, SurfaceShape, SurfaceShapeConstraints,
+    surface_shape_violations, SurfaceShape, SurfaceShapeConstraint, SurfaceShapeConstraints,
 };
 
 #[cfg(test)]

@@ -2,8 +2,8 @@
 //! linear functions of the control net (`docs/theory/fitting.md#shape-constraints-of-surfaces`;
 //! crate-private).
 
-use super::super::bernstein::bernstein_rows;
-use super::constraints::SurfaceShape;
+use super::super::bernstein::{bernstein_rows, pieces};
+use super::constraints::SurfaceShapeConstraint;
 use crate::basis::BasisScratch;
 use crate::Direction;
 
@@ -31,34 +31,40 @@ impl CellRow {
 }
 
 impl Space<'_> {
-    /// The non-empty spans of one direction's knots (`p ≤ s < n`).
-    fn spans(knots: &[f64], p: usize, n: usize) -> Vec<usize> {
-        (p..n).filter(|&s| knots[s] < knots[s + 1]).collect()
+    /// The domain `[u_p, u_{n_u}] × [v_q, v_{n_v}]`.
+    pub(crate) fn domain(&self) -> [(f64, f64); 2] {
+        let ((p, q), (tu, tv), (nu, nv)) = (self.degrees, self.knots, self.net);
+        [(tu[p], tu[nu]), (tv[q], tv[nv])]
     }
 
-    /// For `shape`, the Bernstein coefficients on every knot cell of the function it constrains
-    /// (`z` for bounds, `∂z/∂u` or `∂z/∂v` for monotonicity): on the cell
-    /// `[u_s, u_{s+1}] × [v_t, v_{t+1}]` that function is a tensor polynomial of degree
-    /// `(p − r_u, q − r_v)`, and its coefficients are `M_u ⊗ M_v` applied to the cell's
-    /// `(p + 1) × (q + 1)` control points, with `M` the one-direction rows of
-    /// [`bernstein_rows`] (P&T A2.3 and Farouki & Rajan 1988 in each direction).
-    pub(crate) fn cell_rows(&self, shape: SurfaceShape) -> Vec<CellRow> {
+    /// For `constraint`, the Bernstein coefficients of the function its shape constrains (`z`
+    /// for bounds, `∂z/∂u` or `∂z/∂v` for monotonicity) on every piece of a knot cell inside its
+    /// region: on `[α, β] × [γ, δ]` inside the cell `[u_s, u_{s+1}] × [v_t, v_{t+1}]` that
+    /// function is a tensor polynomial of degree `(p − r_u, q − r_v)`, and its coefficients
+    /// are `M_u ⊗ M_v` applied to the cell's `(p + 1) × (q + 1)` control points, with `M` the
+    /// one-direction rows of [`bernstein_rows`] on the piece (P&T A2.3 and Farouki & Rajan 1988
+    /// in each direction). On the whole domain the pieces are the cells; a region's edge
+    /// inside a cell cuts it, and a region of zero width in a direction (a line) takes the
+    /// values on that line.
+    pub(crate) fn cell_rows(&self, constraint: &SurfaceShapeConstraint) -> Vec<CellRow> {
         let (p, q) = self.degrees;
         let (tu, tv) = self.knots;
         let (nu, nv) = self.net;
+        let shape = constraint.shape;
         let (ru, rv) = match shape.direction() {
             Some(Direction::U) => (1, 0),
             Some(Direction::V) => (0, 1),
             None => (0, 0),
         };
+        let [(u0, u1), (v0, v1)] = constraint.region_or(self.domain());
         let (mut su, mut sv) = (BasisScratch::new(p), BasisScratch::new(q));
-        let mu: Vec<(usize, Vec<Vec<f64>>)> = Self::spans(tu, p, nu)
+        let mu: Vec<(usize, Vec<Vec<f64>>)> = pieces(tu, p, nu, u0, u1)
             .into_iter()
-            .map(|s| (s, bernstein_rows(tu, p, s, tu[s], tu[s + 1], ru, &mut su)))
+            .map(|(s, a, b)| (s, bernstein_rows(tu, p, s, a, b, ru, &mut su)))
             .collect();
-        let mv: Vec<(usize, Vec<Vec<f64>>)> = Self::spans(tv, q, nv)
+        let mv: Vec<(usize, Vec<Vec<f64>>)> = pieces(tv, q, nv, v0, v1)
             .into_iter()
-            .map(|t| (t, bernstein_rows(tv, q, t, tv[t], tv[t + 1], rv, &mut sv)))
+            .map(|(t, a, b)| (t, bernstein_rows(tv, q, t, a, b, rv, &mut sv)))
             .collect();
         let mut out = Vec::new();
         for (s, a) in &mu {

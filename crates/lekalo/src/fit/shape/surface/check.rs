@@ -8,7 +8,7 @@ use crate::BSplineSurface;
 
 /// For each constraint, by how much `surface` breaks its Bernstein condition (0 when it holds):
 /// `max(0, −min σ(b − v))` over the Bernstein coefficients `b` of `z` (bounds) or of `∂z/∂u`,
-/// `∂z/∂v` (monotonicity) on every knot cell, in units of `z` (bounds) or of `z` per unit of the
+/// `∂z/∂v` (monotonicity) on every knot cell (every piece of a cell inside its box), in units of `z` (bounds) or of `z` per unit of the
 /// parameter (monotonicity).
 ///
 /// A 0 always means the shape holds on the whole domain (the convex-hull property of the
@@ -48,13 +48,13 @@ pub fn surface_shape_violations(
             got: surface.dim(),
         });
     }
-    constraints.validate(surface.degree())?;
     let (ku, kv) = surface.knots();
     let space = Space {
         degrees: surface.degree(),
         knots: (ku.as_slice(), kv.as_slice()),
         net: surface.net_size(),
     };
+    constraints.validate(surface.degree(), space.domain())?;
     Ok(violations(
         &space,
         surface.control_points().as_slice(),
@@ -71,10 +71,10 @@ pub(super) fn violations(
     constraints
         .shapes
         .iter()
-        .map(|&s| {
-            let (sigma, level) = (s.sign(), s.level());
+        .map(|constraint| {
+            let (sigma, level) = (constraint.shape.sign(), constraint.shape.level());
             space
-                .cell_rows(s)
+                .cell_rows(constraint)
                 .iter()
                 .fold(0.0_f64, |w, r| w.max(-sigma * (r.eval(c) - level)))
         })

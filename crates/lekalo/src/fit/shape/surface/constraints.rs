@@ -1,12 +1,13 @@
 //! What a shape-constrained surface fit keeps: monotonicity per direction and bounds on the
-//! values (`docs/theory/fitting.md#shape-constraints-of-surfaces`).
+//! values, on the whole domain or on boxes of it (`docs/theory/fitting.md#shape-constraints-of-surfaces`).
 
 use crate::error::{check_finite, Error, Result};
 use crate::Direction;
 
-/// A shape that a surface `z(u, v)` keeps on its whole domain.
+/// A shape that a surface `z(u, v)` keeps, on its whole domain or on a box of it
+/// ([`SurfaceShapeConstraint`]).
 ///
-/// Each is a sign condition `σ·(∂ʳz − v) ≥ 0` for every `(u, v)` of the domain, with `∂ʳ` the
+/// Each is a sign condition `σ·(∂ʳz − v) ≥ 0` for every `(u, v)` of its region, with `∂ʳ` the
 /// partial derivative in the direction named (monotonicity) or the value itself (bounds).
 ///
 /// ```
@@ -67,7 +68,41 @@ impl std::fmt::Display for SurfaceShape {
     }
 }
 
-/// Every shape a constrained surface fit keeps, each on the whole domain. Built by chaining:
+/// One shape kept on a box of the domain, or on all of it.
+///
+/// ```
+/// use lekalo::fit::{SurfaceShape, SurfaceShapeConstraint};
+/// use lekalo::Direction;
+/// let c = SurfaceShapeConstraint { shape: SurfaceShape::AtLeast(0.0), region: Some([(0.0, 0.5), (0.25, 1.0)]) };
+/// assert_eq!(c.to_string(), "min 0 on [0, 0.5] × [0.25, 1]");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfaceShapeConstraint {
+    /// The shape kept.
+    pub shape: SurfaceShape,
+    /// Where: `None` for the whole domain, else the box `[u₀, u₁] × [v₀, v₁]` inside the domain
+    /// (`u₀ ≤ u₁`, `v₀ ≤ v₁`; an equal pair is a line of the domain, both equal a point).
+    pub region: Option<[(f64, f64); 2]>,
+}
+
+impl std::fmt::Display for SurfaceShapeConstraint {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.region {
+            None => write!(f, "{}", self.shape),
+            Some([(a, b), (c, d)]) => write!(f, "{} on [{a}, {b}] × [{c}, {d}]", self.shape),
+        }
+    }
+}
+
+impl SurfaceShapeConstraint {
+    /// The region as a box, the whole `domain` when none is given.
+    pub(crate) fn region_or(&self, domain: [(f64, f64); 2]) -> [(f64, f64); 2] {
+        self.region.unwrap_or(domain)
+    }
+}
+
+/// Every shape a constrained surface fit keeps, each on the whole domain or on a box of it.
+/// Built by chaining:
 ///
 /// ```
 /// use lekalo::fit::{SurfaceShape, SurfaceShapeConstraints};
@@ -75,14 +110,15 @@ impl std::fmt::Display for SurfaceShape {
 /// let c = SurfaceShapeConstraints::new()
 ///     .with(SurfaceShape::Increasing(Direction::U))
 ///     .with(SurfaceShape::Increasing(Direction::V))
-///     .with(SurfaceShape::AtLeast(0.0));
+///     .with_on(SurfaceShape::AtLeast(0.0), (0.0, 0.5), (0.0, 1.0));
 /// assert_eq!(c.len(), 3);
 /// assert_eq!(c.describe(1), "increasing in v");
+/// assert_eq!(c.describe(2), "min 0 on [0, 0.5] × [0, 1]");
 /// ```
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct SurfaceShapeConstraints {
-    /// The shapes.
-    pub shapes: Vec<SurfaceShape>,
+    /// The shapes with where each holds.
+    pub shapes: Vec<SurfaceShapeConstraint>,
 }
 
 impl SurfaceShapeConstraints {
@@ -92,10 +128,23 @@ impl SurfaceShapeConstraints {
         Self::default()
     }
 
-    /// Adds `shape`.
+    /// Adds `shape` on the whole domain.
     #[must_use]
     pub fn with(mut self, shape: SurfaceShape) -> Self {
-        self.shapes.push(shape);
+        self.shapes.push(SurfaceShapeConstraint {
+            shape,
+            region: None,
+        });
+        self
+    }
+
+    /// Adds `shape` on the box `[u₀, u₁] × [v₀, v₁]` of the domain.
+    #[must_use]
+    pub fn with_on(mut self, shape: SurfaceShape, u: (f64, f64), v: (f64, f64)) -> Self {
+        self.shapes.push(SurfaceShapeConstraint {
+            shape,
+            region: Some([u, v]),
+        });
         self
     }
 
@@ -120,14 +169,17 @@ impl SurfaceShapeConstraints {
             .unwrap_or_default()
     }
 
-    /// Checks the levels and that the bounds leave room, for a surface of degrees `(p, q)`.
+    /// Checks the levels and the boxes (finite, ordered, inside `domain`), and that the bounds
+    /// leave room where their boxes meet, for a surface of degrees `(p, q)`.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a NaN or infinite bound; [`Error::InvalidArgument`] (key
-    /// `"shape constraints"`) for monotonicity in a direction of degree 0;
-    /// [`Error::InfeasibleConstraints`] for a lower bound above an upper one.
-    pub(crate) fn validate(&self, (p, q): (usize, usize)) -> Result<()> {
-        for s in &self.shapes {
+    /// [`Error::NonFinite`] for a NaN or infinite bound or box corner;
+    /// [`Error::InvalidArgument`] (key `"shape constraints"`) for monotonicity in a direction of
+    /// degree 0, or a box that ends before it starts or leaves the domain;
+    /// [`Error::InfeasibleConstraints`] for a lower bound above an upper one on boxes that meet.
+    pub(crate) fn validate(&self, (p, q): (usize, usize), domain: [(f64, f64); 2]) -> Result<()> {
+        for c in &self.shapes {
+            let s = c.shape;
             check_finite("shape constraint level", &[s.level()])?;
             if let Some(d) = s.direction() {
                 let degree = if d == Direction::U { p } else { q };
@@ -141,25 +193,49 @@ impl SurfaceShapeConstraints {
                     });
                 }
             }
+            if let Some(region) = c.region {
+                for (((a, b), (lo, hi)), name) in region.into_iter().zip(domain).zip(["u", "v"]) {
+                    check_finite("shape constraint box", &[a, b])?;
+                    if a > b {
+                        return Err(Error::InvalidArgument {
+                            what: "shape constraints".into(),
+                            reason: format!(
+                                "the {name} range [{a}, {b}] of \"{c}\" ends before it starts: \
+                                 give the smaller {name} first"
+                            ),
+                        });
+                    }
+                    if a < lo || b > hi {
+                        return Err(Error::InvalidArgument {
+                            what: "shape constraints".into(),
+                            reason: format!(
+                                "the {name} range [{a}, {b}] of \"{c}\" leaves the domain \
+                                 [{lo}, {hi}] of the fit in {name}: shrink it to the domain"
+                            ),
+                        });
+                    }
+                }
+            }
         }
-        // the tightest lower and upper bounds: a constant between them keeps every shape
-        let lower = self
-            .shapes
-            .iter()
-            .enumerate()
-            .filter(|(_, s)| matches!(s, SurfaceShape::AtLeast(_)))
-            .max_by(|a, b| a.1.level().total_cmp(&b.1.level()));
-        let upper = self
-            .shapes
-            .iter()
-            .enumerate()
-            .filter(|(_, s)| matches!(s, SurfaceShape::AtMost(_)))
-            .min_by(|a, b| a.1.level().total_cmp(&b.1.level()));
-        if let (Some((i, lo)), Some((j, hi))) = (lower, upper) {
-            if lo.level() > hi.level() {
-                return Err(Error::InfeasibleConstraints {
-                    conflicting: vec![self.describe(i), self.describe(j)],
-                });
+        // a lower bound above an upper one where their boxes meet; elsewhere a surface may
+        // pass from one level to the other between the boxes
+        let bound = |lower: bool| {
+            self.shapes.iter().enumerate().filter(move |(_, c)| {
+                matches!(
+                    (c.shape, lower),
+                    (SurfaceShape::AtLeast(_), true) | (SurfaceShape::AtMost(_), false)
+                )
+            })
+        };
+        for (i, lo) in bound(true) {
+            for (j, hi) in bound(false) {
+                let (a, b) = (lo.region_or(domain), hi.region_or(domain));
+                let meet = a.iter().zip(&b).all(|(x, y)| x.0.max(y.0) <= x.1.min(y.1));
+                if meet && lo.shape.level() > hi.shape.level() {
+                    return Err(Error::InfeasibleConstraints {
+                        conflicting: vec![self.describe(i), self.describe(j)],
+                    });
+                }
             }
         }
         Ok(())

@@ -29,12 +29,13 @@ const MARGIN: f64 = 1e-10;
 /// The least-squares surface `z(u, v)` over a grid of values (as
 /// [`surface_grid_least_squares_at`]: `nu × nv` values, value `(i, j)` at `i·nv + j`, at the
 /// parameters `(uu, vv)`, degrees `(p, q)`, knots `(ku, kv)`) that keeps every shape of
-/// `constraints` on the whole domain: the minimiser of `Σ_ij (z(u_i, v_j) − z_ij)²` over the
+/// `constraints`, each on the whole domain or on its box: the minimiser of `Σ_ij (z(u_i, v_j) − z_ij)²` over the
 /// surfaces whose cells satisfy the Bernstein condition of each shape.
 ///
 /// On a knot cell `z` is a tensor polynomial of degree `(p, q)` and `∂z/∂u` one of degree
 /// `(p − 1, q)`; each shape asks the Bernstein coefficients of its function on every cell to
-/// have its sign (`∂z/∂u ≥ 0` for increasing in `u`, `z − v ≥ 0` for a lower bound `v`, …),
+/// have its sign (`∂z/∂u ≥ 0` for increasing in `u`, `z − v ≥ 0` for a lower bound `v`, …;
+/// on a box, the coefficients on each piece of a cell inside it),
 /// linear inequalities on the control net. They are sufficient for the shape to hold
 /// everywhere (the convex-hull property). They are also necessary exactly when the constrained
 /// function has degree ≤ 1 in each variable on a cell — bounds for degrees `(1, 1)`,
@@ -85,7 +86,7 @@ pub fn constrained_surface_grid_least_squares(
         1,
         "grid values of a surface z(u, v) (one number each)",
     )?;
-    constraints.validate((p, q))?;
+    constraints.validate((p, q), [ku.domain(p), kv.domain(q)])?;
     let free = surface_grid_least_squares_at(values, (nu, nv), (p, q), (uu, vv), (ku, kv))?;
     let z = values.as_slice();
     let scale = Scales::of(z, (ku.domain(p), kv.domain(q)));
@@ -134,7 +135,7 @@ pub fn constrained_surface_grid_least_squares(
 
 /// The least-squares surface over scattered rows `(u_k, v_k, z_k)` of
 /// [`surface_scattered_least_squares`] (weights, knots, degrees and the second-difference
-/// `penalty` as there) that keeps every shape of `constraints` on the whole domain. The
+/// `penalty` as there) that keeps every shape of `constraints` where it is asked. The
 /// conditions, their exactness per degree, and the solution are those of
 /// [`constrained_surface_grid_least_squares`]; the objective is the banded normal matrix
 /// `BᵀWB + penalty·DᵀD` of the unconstrained fit, passed to Clarabel as a sparse matrix.
@@ -171,7 +172,7 @@ pub fn constrained_surface_scattered_least_squares(
         3,
         "scattered rows of a surface z(u, v) (u, v, z)",
     )?;
-    constraints.validate((p, q))?;
+    constraints.validate((p, q), [ku.domain(p), kv.domain(q)])?;
     let free = surface_scattered_least_squares(data, weights, (p, q), (ku, kv), penalty)?;
     let z: Vec<f64> = data.iter().map(|r| r[2]).collect();
     let scale = Scales::of(&z, (ku.domain(p), kv.domain(q)));
@@ -254,8 +255,8 @@ impl Scales {
         violations(space, c, constraints)
             .iter()
             .zip(&constraints.shapes)
-            .all(|(v, s)| {
-                let scale = match s.direction() {
+            .all(|(v, c)| {
+                let scale = match c.shape.direction() {
                     None => self.y,
                     Some(Direction::U) => self.y / self.lengths.0,
                     Some(Direction::V) => self.y / self.lengths.1,
@@ -344,9 +345,9 @@ fn program_rows(
     let width = p * space.net.1 + q + 1;
     let mut seen = HashSet::new();
     let mut out = Vec::new();
-    for (owner, &shape) in constraints.shapes.iter().enumerate() {
-        let (sigma, level) = (shape.sign(), shape.level());
-        for cell in space.cell_rows(shape) {
+    for (owner, constraint) in constraints.shapes.iter().enumerate() {
+        let (sigma, level) = (constraint.shape.sign(), constraint.shape.level());
+        for cell in space.cell_rows(constraint) {
             let mut coef = vec![0.0; width];
             let mut sum = 0.0;
             for &(o, w) in &cell.terms {

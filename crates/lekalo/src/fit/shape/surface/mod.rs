@@ -1,5 +1,5 @@
 //! Surfaces `z(u, v)` that keep their shape: increasing or decreasing in `u` and/or `v`, above
-//! or below constant bounds, on the whole domain, fitted by least squares on a grid or on
+//! or below constant bounds, on the whole domain or on boxes of it, fitted by least squares on a grid or on
 //! scattered data (`docs/theory/fitting.md#shape-constraints-of-surfaces`).
 //!
 //! Every shape is a sign condition on a tensor polynomial on each knot cell (`z` itself, or
@@ -10,8 +10,8 @@
 //!
 //! | file | what it does |
 //! |---|---|
-//! | `constraints.rs` | [`SurfaceShape`], [`SurfaceShapeConstraints`]: what is kept, validated against the degrees |
-//! | `cells.rs` | the Bernstein coefficients on every knot cell of `z`, `∂z/∂u` or `∂z/∂v` as sparse rows over the net (crate-private) |
+//! | `constraints.rs` | [`SurfaceShape`], [`SurfaceShapeConstraint`], [`SurfaceShapeConstraints`]: what is kept and where, validated against the degrees and the domain |
+//! | `cells.rs` | the Bernstein coefficients on every knot cell (or piece of one inside a box) of `z`, `∂z/∂u` or `∂z/∂v` as sparse rows over the net (crate-private) |
 //! | `check.rs` | [`surface_shape_violations`]: the Bernstein condition of a surface per constraint |
 //! | `fits.rs` | [`constrained_surface_grid_least_squares`], [`constrained_surface_scattered_least_squares`]: the unconstrained fit first, the program when it breaks a constraint |
 
@@ -21,7 +21,7 @@ mod constraints;
 mod fits;
 
 pub use check::surface_shape_violations;
-pub use constraints::{SurfaceShape, SurfaceShapeConstraints};
+pub use constraints::{SurfaceShape, SurfaceShapeConstraint, SurfaceShapeConstraints};
 pub use fits::{
     constrained_surface_grid_least_squares, constrained_surface_scattered_least_squares,
 };

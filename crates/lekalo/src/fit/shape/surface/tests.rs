@@ -32,20 +32,22 @@ fn both_increasing() -> SurfaceShapeConstraints {
         .with(SurfaceShape::Increasing(Direction::V))
 }
 
-/// Values on a dense grid: every step along `u` and along `v` of the right sign, every value
-/// within the bounds.
+/// Values on a dense grid of each constraint's region (the domain, or its box): every step
+/// along `u` and along `v` of the right sign, every value within the bounds.
 fn dense_check(s: &BSplineSurface, c: &SurfaceShapeConstraints, slack: f64) {
     let m = 121;
-    let ((u0, u1), (v0, v1)) = s.domain();
-    let us: Vec<f64> = (0..m)
-        .map(|k| u0 + (u1 - u0) * k as f64 / (m - 1) as f64)
-        .collect();
-    let vs: Vec<f64> = (0..m)
-        .map(|k| v0 + (v1 - v0) * k as f64 / (m - 1) as f64)
-        .collect();
-    let mut z = vec![0.0; m * m];
-    s.eval_grid(&us, &vs, &mut z).unwrap();
-    for shape in &c.shapes {
+    let ((du0, du1), (dv0, dv1)) = s.domain();
+    for constraint in &c.shapes {
+        let [(u0, u1), (v0, v1)] = constraint.region_or([(du0, du1), (dv0, dv1)]);
+        let us: Vec<f64> = (0..m)
+            .map(|k| u0 + (u1 - u0) * k as f64 / (m - 1) as f64)
+            .collect();
+        let vs: Vec<f64> = (0..m)
+            .map(|k| v0 + (v1 - v0) * k as f64 / (m - 1) as f64)
+            .collect();
+        let mut z = vec![0.0; m * m];
+        s.eval_grid(&us, &vs, &mut z).unwrap();
+        let shape = &constraint.shape;
         for i in 0..m {
             for j in 0..m {
                 let here = z[i * m + j];
@@ -137,9 +139,10 @@ fn kkt_residual(
     }
     // the active rows as dense vectors (σ·∂b/∂c)
     let mut rows: Vec<Vec<f64>> = Vec::new();
-    for &shape in &c.shapes {
+    for constraint in &c.shapes {
+        let shape = constraint.shape;
         let (sigma, level) = (shape.sign(), shape.level());
-        for r in space.cell_rows(shape) {
+        for r in space.cell_rows(constraint) {
             let g = sigma * (r.eval(x) - level);
             assert!(g >= -1e-12, "{shape}: row infeasible by {g}");
             let mut dense = vec![0.0; n];
@@ -489,4 +492,168 @@ fn the_condition_is_exact_for_bilinear_cells_and_sufficient_above() {
     .unwrap();
     assert!(surface_shape_violations(&s, &c).unwrap()[0] > 0.0);
     dense_check(&s, &c, 0.0);
+}
+
+/// A table that falls in `u` on `[0, 0.4]` and rises after, with a ripple: increasing in `u`
+/// holds for the data only on the right part of the domain.
+fn valley_grid(nu: usize, nv: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let u: Vec<f64> = (0..nu).map(|i| i as f64 / (nu - 1) as f64).collect();
+    let v: Vec<f64> = (0..nv).map(|j| j as f64 / (nv - 1) as f64).collect();
+    let mut z = Vec::with_capacity(nu * nv);
+    for &x in &u {
+        for &y in &v {
+            z.push((x - 0.4) * (x - 0.4) + 0.3 * y + 0.08 * (23.0 * x + 5.0 * y).sin());
+        }
+    }
+    (u, v, z)
+}
+
+#[test]
+fn a_shape_on_a_box_holds_there_and_leaves_the_rest_free() {
+    let (u, v, z) = valley_grid(21, 11);
+    let values = PointsRef::from_flat(1, &z).unwrap();
+    // a box whose u-edges cut knot cells (knots at multiples of 1/6), and a line v = 0.3
+    let boxed = [((0.45, 1.0), (0.1, 0.9)), ((0.5, 0.95), (0.3, 0.3))];
+    for (p, q) in [(1, 1), (2, 2), (3, 2)] {
+        let (ku, kv) = (
+            KnotVector::clamped_uniform(p, 6 + p).unwrap(),
+            KnotVector::clamped_uniform(q, 4 + q).unwrap(),
+        );
+        let free =
+            surface_grid_least_squares_at(values, (21, 11), (p, q), (&u, &v), (&ku, &kv)).unwrap();
+        for (bu, bv) in boxed {
+            let c = SurfaceShapeConstraints::new().with_on(
+                SurfaceShape::Increasing(Direction::U),
+                bu,
+                bv,
+            );
+            assert!(
+                surface_shape_violations(&free, &c).unwrap()[0] > 1e-3,
+                "the plain fit should dip in u inside the box"
+            );
+            let s = constrained_surface_grid_least_squares(
+                values,
+                (21, 11),
+                (p, q),
+                (&u, &v),
+                (&ku, &kv),
+                &c,
+            )
+            .unwrap();
+            assert_eq!(surface_shape_violations(&s, &c).unwrap(), vec![0.0]);
+            dense_check(&s, &c, 0.0);
+            // optimal for the rows of the box alone
+            let design = grid_design(&ku, &kv, (p, q), &u, &v);
+            let kkt = kkt_residual(&design, &z, &s, &c, 1e-7);
+            assert!(kkt < 1e-9, "degrees ({p}, {q}), box {bu:?} × {bv:?}: {kkt}");
+            // outside the box the surface still falls in u, as the data do
+            let (mut a, mut b) = ([0.0], [0.0]);
+            s.eval_into(0.05, 0.5, &mut a).unwrap();
+            s.eval_into(0.3, 0.5, &mut b).unwrap();
+            assert!(
+                b[0] < a[0],
+                "left of the box the fit should fall: {a:?} {b:?}"
+            );
+            // and the whole-domain constraint is a different, stricter problem
+            let whole = SurfaceShapeConstraints::new().with(SurfaceShape::Increasing(Direction::U));
+            assert!(surface_shape_violations(&s, &whole).unwrap()[0] > 0.0);
+        }
+    }
+}
+
+#[test]
+fn a_box_the_plain_fit_already_keeps_returns_it_unchanged() {
+    let (u, v, z) = valley_grid(21, 11);
+    let values = PointsRef::from_flat(1, &z).unwrap();
+    let (ku, kv) = (
+        KnotVector::clamped_uniform(3, 9).unwrap(),
+        KnotVector::clamped_uniform(2, 6).unwrap(),
+    );
+    let free =
+        surface_grid_least_squares_at(values, (21, 11), (3, 2), (&u, &v), (&ku, &kv)).unwrap();
+    // the values lie in [-0.1, 0.8], rising in u right of the valley's floor
+    let c = SurfaceShapeConstraints::new()
+        .with_on(SurfaceShape::AtMost(2.0), (0.0, 0.5), (0.0, 1.0))
+        .with_on(SurfaceShape::AtLeast(-0.5), (0.2, 0.9), (0.1, 0.3));
+    assert_eq!(surface_shape_violations(&free, &c).unwrap(), vec![0.0, 0.0]);
+    let s =
+        constrained_surface_grid_least_squares(values, (21, 11), (3, 2), (&u, &v), (&ku, &kv), &c)
+            .unwrap();
+    assert_eq!(s, free);
+}
+
+#[test]
+fn bounds_on_boxes_conflict_only_where_the_boxes_meet() {
+    let (u, v, z) = valley_grid(9, 7);
+    let values = PointsRef::from_flat(1, &z).unwrap();
+    let k = KnotVector::clamped_uniform(1, 4).unwrap();
+    let fit = |c: &SurfaceShapeConstraints| {
+        constrained_surface_grid_least_squares(values, (9, 7), (1, 1), (&u, &v), (&k, &k), c)
+    };
+    // min 1 on the left third, max 0 on the right third: a surface can do both
+    let apart = SurfaceShapeConstraints::new()
+        .with_on(SurfaceShape::AtLeast(1.0), (0.0, 1.0 / 3.0), (0.0, 1.0))
+        .with_on(SurfaceShape::AtMost(0.0), (2.0 / 3.0, 1.0), (0.0, 1.0));
+    let s = fit(&apart).unwrap();
+    assert_eq!(
+        surface_shape_violations(&s, &apart).unwrap(),
+        vec![0.0, 0.0]
+    );
+    dense_check(&s, &apart, 0.0);
+    // boxes that share the line u = 0.5 cannot
+    let meet = SurfaceShapeConstraints::new()
+        .with_on(SurfaceShape::AtLeast(1.0), (0.0, 0.5), (0.0, 1.0))
+        .with_on(SurfaceShape::AtMost(0.0), (0.5, 1.0), (0.0, 0.5));
+    assert_eq!(
+        fit(&meet).unwrap_err(),
+        Error::InfeasibleConstraints {
+            conflicting: vec![
+                "min 1 on [0, 0.5] × [0, 1]".into(),
+                "max 0 on [0.5, 1] × [0, 0.5]".into()
+            ]
+        }
+    );
+    // boxes that leave the domain, or run backwards, are named with the fix
+    for (bu, bv, words) in [
+        (
+            (0.0, 1.5),
+            (0.0, 1.0),
+            "leaves the domain [0, 1] of the fit in u",
+        ),
+        ((0.0, 1.0), (0.8, 0.2), "the v range [0.8, 0.2]"),
+    ] {
+        let c = SurfaceShapeConstraints::new().with_on(SurfaceShape::AtLeast(0.0), bu, bv);
+        let e = fit(&c).unwrap_err().to_string();
+        assert!(e.contains(words), "{e}");
+    }
+    let c = SurfaceShapeConstraints::new().with_on(
+        SurfaceShape::AtLeast(0.0),
+        (f64::NAN, 1.0),
+        (0.0, 1.0),
+    );
+    assert!(matches!(fit(&c), Err(Error::NonFinite { .. })));
+}
+
+#[test]
+fn a_monotone_surface_between_boxed_bounds_that_contradict_it_is_named() {
+    // at least 1 on the left, at most 0 on the right, and increasing in u: no surface does all
+    let (u, v, z) = valley_grid(9, 7);
+    let values = PointsRef::from_flat(1, &z).unwrap();
+    let k = KnotVector::clamped_uniform(2, 5).unwrap();
+    let c = SurfaceShapeConstraints::new()
+        .with_on(SurfaceShape::AtLeast(1.0), (0.0, 0.25), (0.0, 1.0))
+        .with_on(SurfaceShape::AtMost(0.0), (0.75, 1.0), (0.0, 1.0))
+        .with(SurfaceShape::Increasing(Direction::U));
+    let e = constrained_surface_grid_least_squares(values, (9, 7), (2, 2), (&u, &v), (&k, &k), &c)
+        .unwrap_err();
+    let Error::InfeasibleConstraints { conflicting } = &e else {
+        panic!("expected the conflicting constraints, got {e}");
+    };
+    assert!(
+        conflicting.len() >= 2
+            && conflicting
+                .iter()
+                .all(|w| (0..3).any(|i| c.describe(i) == *w)),
+        "{conflicting:?}"
+    );
 }
