@@ -2,7 +2,8 @@
 //! `convex`, `concave`, `min`, `max`, `through`, `slope_at`, `integral`, `periodic`), read into
 //! the library's
 //! [`ShapeConstraints`] (`docs/theory/fitting.md#shape-constraints`), and those of the surface
-//! fits (`increasing="u"`, `min=`, …) into [`SurfaceShapeConstraints`]. Conversions only.
+//! fits (`increasing="u"`, `min=`, …, each on the whole domain or a box) into
+//! [`SurfaceShapeConstraints`]. Conversions only.
 
 use lekalo::fit::{Shape, ShapeConstraints, SurfaceShape, SurfaceShapeConstraints};
 use lekalo::vocabulary::DIRECTION;
@@ -142,54 +143,98 @@ pub(crate) struct SurfaceShapeArgs<'a, 'py> {
     pub(crate) max: Option<&'a Bound<'py, PyAny>>,
 }
 
-impl SurfaceShapeArgs<'_, '_> {
+/// A box `((u0, u1), (v0, v1))` of a surface's domain, or `None` for the whole domain.
+type SurfaceBox = Option<((f64, f64), (f64, f64))>;
+
+impl<'py> SurfaceShapeArgs<'_, 'py> {
     /// The constraints (`docs/theory/fitting.md#shape-constraints-of-surfaces`): a monotonicity
-    /// is a direction `"u"` or `"v"`, a sequence of them, or `True` (both directions); a bound
-    /// is a number (everywhere).
+    /// is a direction `"u"` or `"v"`, `True` (both directions), `(direction, (u0, u1), (v0, v1))`
+    /// on a box, or a list of those; a bound is a number (everywhere), `(v, (u0, u1), (v0, v1))`
+    /// on a box, or a list of those.
     pub(crate) fn constraints(&self) -> PyResult<SurfaceShapeConstraints> {
         let mut c = SurfaceShapeConstraints::new();
+        let add = |c: SurfaceShapeConstraints, shape, on: SurfaceBox| match on {
+            None => c.with(shape),
+            Some((u, v)) => c.with_on(shape, u, v),
+        };
         for (arg, name) in [
             (self.increasing, "increasing"),
             (self.decreasing, "decreasing"),
         ] {
             let Some(arg) = arg else { continue };
-            let directions: Vec<String> = if let Ok(on) = arg.extract::<bool>() {
+            // one item: a direction, or a direction on a box
+            let item = |x: &Bound<'py, PyAny>| -> Option<(String, SurfaceBox)> {
+                if let Ok(d) = x.extract::<String>() {
+                    Some((d, None))
+                } else {
+                    let (d, u, v) = x.extract::<(String, (f64, f64), (f64, f64))>().ok()?;
+                    Some((d, Some((u, v))))
+                }
+            };
+            let items: Vec<(String, SurfaceBox)> = if let Ok(on) = arg.extract::<bool>() {
                 if on {
-                    vec!["u".into(), "v".into()]
+                    vec![("u".into(), None), ("v".into(), None)]
                 } else {
                     vec![]
                 }
-            } else if let Ok(d) = arg.extract::<String>() {
-                vec![d]
-            } else if let Ok(list) = arg.extract::<Vec<String>>() {
+            } else if let Some(one) = item(arg) {
+                vec![one]
+            } else if let Some(list) = arg
+                .extract::<Vec<Bound<'py, PyAny>>>()
+                .ok()
+                .and_then(|xs| xs.iter().map(item).collect::<Option<Vec<_>>>())
+            {
                 list
             } else {
                 return Err(bad(format!(
-                    "{name}: give a direction \"u\" or \"v\", a sequence of them (\"u\", \"v\"), \
-                     or True for both"
+                    "{name}: give a direction \"u\" or \"v\", True for both, (direction, \
+                     (u0, u1), (v0, v1)) on a box, or a sequence of those"
                 )));
             };
-            for d in directions {
+            for (d, on) in items {
                 let d = word(&DIRECTION, name, &d)?;
-                c = c.with(if name == "increasing" {
+                let shape = if name == "increasing" {
                     SurfaceShape::Increasing(d)
                 } else {
                     SurfaceShape::Decreasing(d)
-                });
+                };
+                c = add(c, shape, on);
             }
         }
         for (arg, name) in [(self.min, "min"), (self.max, "max")] {
             let Some(arg) = arg else { continue };
-            let Ok(v) = arg.extract::<f64>() else {
+            let item = |x: &Bound<'py, PyAny>| -> Option<(f64, SurfaceBox)> {
+                if let Ok(v) = x.extract::<f64>() {
+                    Some((v, None))
+                } else {
+                    let (v, u, w) = x.extract::<(f64, (f64, f64), (f64, f64))>().ok()?;
+                    Some((v, Some((u, w))))
+                }
+            };
+            // a list holds boxes: (v, x) is not a pair of bounds
+            let boxed = |x: &Bound<'py, PyAny>| item(x).filter(|(_, on)| on.is_some());
+            let items = if let Some(one) = item(arg) {
+                vec![one]
+            } else if let Some(list) = arg
+                .extract::<Vec<Bound<'py, PyAny>>>()
+                .ok()
+                .and_then(|xs| xs.iter().map(boxed).collect::<Option<Vec<_>>>())
+            {
+                list
+            } else {
                 return Err(bad(format!(
-                    "{name}: give a number, the bound of the surface's values everywhere"
+                    "{name}: give a number (the bound everywhere), (v, (u0, u1), (v0, v1)) on a \
+                     box, or a list of boxed bounds"
                 )));
             };
-            c = c.with(if name == "min" {
-                SurfaceShape::AtLeast(v)
-            } else {
-                SurfaceShape::AtMost(v)
-            });
+            for (v, on) in items {
+                let shape = if name == "min" {
+                    SurfaceShape::AtLeast(v)
+                } else {
+                    SurfaceShape::AtMost(v)
+                };
+                c = add(c, shape, on);
+            }
         }
         Ok(c)
     }

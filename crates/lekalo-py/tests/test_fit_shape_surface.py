@@ -75,3 +75,31 @@ def test_bad_arguments_and_contradictions():
         lekalo.fit_surface_grid(grid, (6, 5), degree=(2, 2), increasing=True)
     with pytest.raises(lekalo.InputError, match="min"):
         lekalo.fit_surface_grid(grid, degree=(2, 2), u=U, v=V, tu=TU, tv=TV, min="low")
+
+
+def test_shapes_on_boxes_hold_there_only():
+    # a valley in u: falling left of u = 0.4, rising after
+    u, v = np.linspace(0.0, 1.0, 21), np.linspace(0.0, 1.0, 11)
+    uu, vv = np.meshgrid(u, v, indexing="ij")
+    z = (uu - 0.4) ** 2 + 0.3 * vv + 0.08 * np.sin(23 * uu + 5 * vv)
+    tu = [0, 0, 0, 1 / 7, 2 / 7, 3 / 7, 4 / 7, 5 / 7, 6 / 7, 1, 1, 1]
+    tv = [0, 0, 0, 0.25, 0.5, 0.75, 1, 1, 1]
+    fit = lambda **kw: lekalo.fit_surface_grid(z[:, :, None], degree=(2, 2), u=u, v=v, tu=tu, tv=tv, **kw)
+    fu, fv = np.meshgrid(np.linspace(0.45, 1.0, 56), np.linspace(0.1, 0.9, 41), indexing="ij")
+    inside = lambda s: s(fu.ravel(), fv.ravel()).reshape(fu.shape)
+    free = fit()
+    assert (np.diff(inside(free), axis=0) < -1e-3).any()
+    for increasing in (("u", (0.45, 1.0), (0.1, 0.9)), [("u", (0.45, 1.0), (0.1, 0.9))]):
+        s = fit(increasing=increasing, min=[(0.05, (0.3, 0.5), (0.0, 1.0))])
+        assert (np.diff(inside(s), axis=0) >= -1e-12).all()
+        gu, gv = np.meshgrid(np.linspace(0.3, 0.5, 41), FINE, indexing="ij")
+        assert s(gu.ravel(), gv.ravel()).min() >= 0.05 - 1e-12
+        # left of the box the fit still falls in u, as the data do
+        assert s(0.3, 0.5)[0] < s(0.05, 0.5)[0]
+    # a box leaving the domain, and a list of unboxed bounds, are refused with the fix
+    with pytest.raises(lekalo.InputError, match="leaves the domain"):
+        fit(min=(0.0, (0.0, 2.0), (0.0, 1.0)))
+    with pytest.raises(lekalo.InputError, match="list of boxed bounds"):
+        fit(min=(0.0, 0.5))
+    with pytest.raises(lekalo.InputError, match="on a box"):
+        fit(increasing=("u", (0.0, 1.0)))

@@ -865,6 +865,15 @@ def fit_closed(
 ) -> Tuple[BSplineCurve, Array]: ...
 def gcv_score(x: ArrayLike, y: ArrayLike, lam: float, w: Optional[ArrayLike] = None) -> float: ...
 def place_knots(params: ArrayLike, n_ctrl: int, k: int = 3) -> Array: ...
+# a surface's shape on the whole domain, or on a box ((u0, u1), (v0, v1)) of it
+SurfaceMonotone = Union[
+    bool,
+    Literal["u", "v"],
+    Tuple[Literal["u", "v"], Tuple[float, float], Tuple[float, float]],
+    Sequence[Union[Literal["u", "v"], Tuple[Literal["u", "v"], Tuple[float, float], Tuple[float, float]]]],
+]
+SurfaceBound = Union[float, Tuple[float, Tuple[float, float], Tuple[float, float]], Sequence[Tuple[float, Tuple[float, float], Tuple[float, float]]]]
+
 def fit_surface_grid(
     grid: ArrayLike,
     n_ctrl: Optional[Tuple[int, int]] = None,
@@ -875,10 +884,10 @@ def fit_surface_grid(
     v: Optional[ArrayLike] = None,
     tu: Optional[ArrayLike] = None,
     tv: Optional[ArrayLike] = None,
-    increasing: Union[bool, Literal["u", "v"], Sequence[Literal["u", "v"]], None] = None,
-    decreasing: Union[bool, Literal["u", "v"], Sequence[Literal["u", "v"]], None] = None,
-    min: Optional[float] = None,
-    max: Optional[float] = None,
+    increasing: Optional[SurfaceMonotone] = None,
+    decreasing: Optional[SurfaceMonotone] = None,
+    min: Optional[SurfaceBound] = None,
+    max: Optional[SurfaceBound] = None,
 ) -> BSplineSurface: ...
 def fit_surface_scattered(
     data: ArrayLike,
@@ -888,10 +897,10 @@ def fit_surface_scattered(
     *,
     w: Optional[ArrayLike] = None,
     penalty: float = 0.0,
-    increasing: Union[bool, Literal["u", "v"], Sequence[Literal["u", "v"]], None] = None,
-    decreasing: Union[bool, Literal["u", "v"], Sequence[Literal["u", "v"]], None] = None,
-    min: Optional[float] = None,
-    max: Optional[float] = None,
+    increasing: Optional[SurfaceMonotone] = None,
+    decreasing: Optional[SurfaceMonotone] = None,
+    min: Optional[SurfaceBound] = None,
+    max: Optional[SurfaceBound] = None,
 ) -> Tuple[BSplineSurface, Array, float]: ...
 def fit_tensor_grid(
     axes: Sequence[ArrayLike], values: ArrayLike, t: Sequence[ArrayLike], k: Optional[Union[int, Sequence[int]]] = None

@@ -23,9 +23,11 @@ use crate::surfaces::PyBSplineSurface;
 /// `parametrization` averaged over the grid lines, or given (`u`: `nu` numbers, `v`: `nv`); the
 /// knots are placed over them for `n_ctrl`, or given (`tu`, `tv`, which then set the net's size).
 /// A table of values `z(u, v)` (`dim = 1`, with its coordinates `u` and `v`) may keep shapes on
-/// the whole domain (`docs/theory/fitting.md#shape-constraints-of-surfaces`): `increasing` /
-/// `decreasing` a direction `"u"` or `"v"`, a sequence of them, or `True` for both; `min`, `max`
-/// numbers bounding the values.
+/// the whole domain or on boxes of it (`docs/theory/fitting.md#shape-constraints-of-surfaces`):
+/// `increasing` / `decreasing` a direction `"u"` or `"v"`, `True` for both,
+/// `(direction, (u0, u1), (v0, v1))` on a box, or a sequence of those; `min`, `max` a number
+/// bounding the values everywhere, `(value, (u0, u1), (v0, v1))` on a box, or a list of boxed
+/// bounds.
 #[pyfunction]
 #[pyo3(signature = (grid, n_ctrl = None, degree = IntPair::of(3, 3), *, parametrization = None, u = None, v = None, tu = None, tv = None, increasing = None, decreasing = None, min = None, max = None),
        text_signature = "(grid, n_ctrl=None, degree=(3, 3), *, parametrization=None, u=None, v=None, tu=None, tv=None, increasing=None, decreasing=None, min=None, max=None)")]
@@ -130,7 +132,7 @@ pub(crate) fn fit_surface_grid(
 /// bbox, kx=p, ky=q)` for `penalty = 0` is `tu` = `p + 1` copies of `bbox[0]`, `tx`, `p + 1`
 /// copies of `bbox[1]`, and `tv` likewise;
 /// `docs/theory/fitting.md#surfaces`). Returns `(surface, residuals, weighted_rss)`. Rows
-/// `(u, v, z)` may keep shapes on the whole domain as in [`fit_surface_grid`]: `increasing`,
+/// `(u, v, z)` may keep shapes on the whole domain or on boxes as in [`fit_surface_grid`]: `increasing`,
 /// `decreasing` (`"u"`, `"v"`, both, or `True`), `min`, `max`
 /// (`docs/theory/fitting.md#shape-constraints-of-surfaces`).
 #[pyfunction]
