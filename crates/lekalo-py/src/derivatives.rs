@@ -11,10 +11,12 @@
 //! This file holds the derivatives of evaluation (curves, NURBS, surfaces, tensor products);
 //! `derivatives/fits.rs` those of the fits (interpolation, least squares, smoothing) with
 //! respect to their data, and `derivatives/knots.rs` those of curve and surface evaluation with
-//! respect to the knots.
+//! respect to the knots; `derivatives/rational_nets.rs` those of NURBS surface and tensor-NURBS
+//! evaluation with respect to the net, the weights and the parameters.
 
 mod fits;
 mod knots;
+mod rational_nets;
 
 use lekalo::derivatives::CurveLinearization;
 use lekalo::{BSplineCurve, NurbsCurve};
@@ -31,6 +33,7 @@ use crate::surfaces::bspline_surface_arg;
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     fits::register(m)?;
     knots::register(m)?;
+    rational_nets::register(m)?;
     m.add_function(wrap_pyfunction!(bspline_curve_jvp, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_curve_vjp, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_curve_linearize, m)?)?;

@@ -592,6 +592,24 @@ def tensor_bspline_knot_vjp(
     x: ArrayLike,
     cotangent: ArrayLike,
 ) -> Tuple[Array, ...]: ...
+def tensor_nurbs_jvp(
+    t: Sequence[ArrayLike],
+    c: ArrayLike,
+    k: Union[int, Sequence[int]],
+    w: ArrayLike,
+    x: ArrayLike,
+    c_tangent: Optional[ArrayLike] = None,
+    w_tangent: Optional[ArrayLike] = None,
+    x_tangent: Optional[ArrayLike] = None,
+) -> Tuple[Array, Array]: ...
+def tensor_nurbs_vjp(
+    t: Sequence[ArrayLike],
+    c: ArrayLike,
+    k: Union[int, Sequence[int]],
+    w: ArrayLike,
+    x: ArrayLike,
+    cotangent: ArrayLike,
+) -> Tuple[Array, Array, Array]: ...
 def tensor_nurbs_knot_jvp(
     t: Sequence[ArrayLike],
     c: ArrayLike,
@@ -674,6 +692,31 @@ def nurbs_surface_knot_vjp(
     v: ArrayLike,
     cotangent: ArrayLike,
 ) -> Tuple[Array, Array]: ...
+def nurbs_surface_jvp(
+    degree_u: int,
+    degree_v: int,
+    knots_u: ArrayLike,
+    knots_v: ArrayLike,
+    control: ArrayLike,
+    weights: ArrayLike,
+    u: ArrayLike,
+    v: ArrayLike,
+    control_tangent: Optional[ArrayLike] = None,
+    weights_tangent: Optional[ArrayLike] = None,
+    u_tangent: Optional[ArrayLike] = None,
+    v_tangent: Optional[ArrayLike] = None,
+) -> Tuple[Array, Array]: ...
+def nurbs_surface_vjp(
+    degree_u: int,
+    degree_v: int,
+    knots_u: ArrayLike,
+    knots_v: ArrayLike,
+    control: ArrayLike,
+    weights: ArrayLike,
+    u: ArrayLike,
+    v: ArrayLike,
+    cotangent: ArrayLike,
+) -> Tuple[Array, Array, Array, Array]: ...
 def bspline_surface_linearize(
     degree_u: int,
     degree_v: int,

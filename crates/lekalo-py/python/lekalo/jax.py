@@ -7,8 +7,12 @@
   differentiable also with respect to the weights;
 - ``bspline_surface_eval(knots_u, knots_v, control_points, u, v, degree_u, degree_v)``:
   ``S(u, v)`` of a tensor-product B-spline surface (control net ``(nu, nv, dim)``);
+- ``nurbs_surface_eval(knots_u, knots_v, control_points, weights, u, v, degree_u, degree_v)``:
+  ``S(u, v)`` of a NURBS surface, differentiable also with respect to the weights;
 - ``tensor_bspline_eval(knots, control_points, x, degrees)``: ``S(x)`` of a tensor-product
   B-spline in ``N`` variables at points ``(..., N)``;
+- ``tensor_nurbs_eval(knots, control_points, weights, x, degrees)``: ``S(x)`` of a
+  tensor-product NURBS in ``N`` variables, differentiable also with respect to the weights;
 - ``fit_least_squares(points, params, t, k=3, *, w=None)`` and
   ``fit_smoothing(x, y, w=None, lam=...)``: the control points of the least-squares fit and of
   the smoothing spline, differentiable with respect to the data;
@@ -27,7 +31,7 @@ knots of a direction bound the domain and are held fixed, their gradient zero;
 ``docs/theory/derivatives.md``, "Knots"). The degrees are constants, and so are the knots of
 the fits, of ``interpolate`` and of the geometric functions.
 
-The four evaluations run inside the compiled program: their values, JVPs and VJPs are XLA
+The six evaluations run inside the compiled program: their values, JVPs and VJPs are XLA
 custom calls (FFI targets written against XLA's C ABI in the native module,
 ``lekalo._jax_ffi``), no host callback. The values are lekalo's evaluation (for curves, the
 reference de Boor evaluation for small batches and the fast evaluator of
@@ -99,7 +103,9 @@ __all__ = [
     "bspline_eval",
     "nurbs_eval",
     "bspline_surface_eval",
+    "nurbs_surface_eval",
     "tensor_bspline_eval",
+    "tensor_nurbs_eval",
     "fit_least_squares",
     "fit_smoothing",
     "interpolate",
@@ -269,6 +275,73 @@ def bspline_surface_eval(knots_u, knots_v, control_points, u, v, degree_u, degre
     return out.reshape(u.shape + ctrl.shape[-1:])
 
 
+# -- NURBS surfaces ------------------------------------------------------------------------------
+
+
+def _nurbs_surface_out_shape(res):
+    """``S(u, v)``'s shape from the residuals ``(ku, kv, net, w, uv)``: ``uv.shape[:-1] +
+    (dim,)``."""
+    _, _, net, _, uv = res
+    return uv.shape[:-1] + net.shape[-1:]
+
+
+_NURBS_SURFACE = _jax_ffi.Kernel(
+    "nurbs_surface_eval",
+    "lekalo_nurbs_surface",
+    ("knots_u", "knots_v", "control", "weight", "parameter"),
+    _nurbs_surface_out_shape,
+)
+
+
+def nurbs_surface_eval(knots_u, knots_v, control_points, weights, u, v, degree_u, degree_v):
+    """``S(u, v)`` of the NURBS surface of degrees ``(degree_u, degree_v)`` on ``knots_u``,
+    ``knots_v`` with the Euclidean control net ``control_points`` (``(nu, nv, dim)``) and
+    positive ``weights`` (``(nu, nv)``), at parameters ``u``, ``v`` of one shape. Returns
+    ``u.shape + (dim,)``, bit-for-bit ``lekalo.NurbsSurface``'s evaluation, as an XLA custom
+    call (no host callback).
+
+    Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
+    respect to ``control_points``, ``weights``, ``u``, ``v``, ``knots_u`` and ``knots_v``, by
+    lekalo's kernels (``lekalo.nurbs_surface_jvp`` / ``_vjp``: the rational basis
+    ``R_kl = N_k M_l w_kl / W`` for the net, ``N_k M_l (P_kl − S) / W`` for the weights, the
+    quotient rule ``(A_u − W_u S) / W`` for the parameters; ``lekalo.nurbs_surface_knot_jvp`` /
+    ``_vjp`` for the interior knots of each direction, with ``bspline_eval``'s conventions).
+    The degrees are constants. A non-positive weight raises lekalo's error from the custom call.
+    """
+    name = "nurbs_surface_eval"
+    _require_x64(name)
+    degrees = (_degree(degree_u, "degree_u", name), _degree(degree_v, "degree_v", name))
+    ku = _float64(knots_u, "knots_u", name)
+    kv = _float64(knots_v, "knots_v", name)
+    ctrl = _float64(control_points, "control_points", name)
+    w = _float64(weights, "weights", name)
+    u = _float64(u, "u", name)
+    v = _float64(v, "v", name)
+    if ctrl.ndim != 3:
+        raise InputError(
+            f"lekalo.jax.{name}: control_points must be a net (nu, nv, dim), got shape {ctrl.shape}"
+        )
+    if w.shape != ctrl.shape[:2]:
+        raise InputError(
+            f"lekalo.jax.{name}: weights must be one a net point, shape {ctrl.shape[:2]}, got {w.shape}"
+        )
+    for k, n, d, what in ((ku, ctrl.shape[0], degrees[0], "u"), (kv, ctrl.shape[1], degrees[1], "v")):
+        if k.ndim != 1 or k.shape[0] != n + d + 1:
+            raise InputError(
+                f"lekalo.jax.{name}: knots_{what} must be 1-D with {n + d + 1} knots (net size "
+                f"{n} + degree {d} + 1 along {what}), got shape {k.shape}"
+            )
+    if u.shape != v.shape:
+        raise InputError(
+            f"lekalo.jax.{name}: u and v must have one shape, got {u.shape} and {v.shape} "
+            "(jnp.meshgrid for a grid)"
+        )
+    static = (("degree_u", degrees[0]), ("degree_v", degrees[1]))
+    uv = jnp.stack([u.reshape(-1), v.reshape(-1)], axis=-1)
+    out = _NURBS_SURFACE(static, (), (ku, kv, ctrl, w, uv))
+    return out.reshape(u.shape + ctrl.shape[-1:])
+
+
 # -- tensor-product splines in N variables ---------------------------------------------------------
 
 
@@ -342,5 +415,89 @@ def tensor_bspline_eval(knots, control_points, x, degrees):
     c = ctrl[..., None] if scalar else ctrl
     static = (("n_vars", n),) + tuple((f"degree_{a}", p) for a, p in enumerate(degrees))
     out = _tensor_kernel(n)(static, (), (*knots, c, x.reshape(-1, n)))
+    out = out.reshape(x.shape[:-1] + c.shape[-1:])
+    return out[..., 0] if scalar else out
+
+
+# -- tensor-product NURBS in N variables -----------------------------------------------------------
+
+
+def _tensor_nurbs_out_shape(res):
+    """``S(x)``'s shape from the residuals ``(*knots, net, w, x)``: ``x.shape[:-1] + (dim,)``."""
+    net, _, x = res[-3:]
+    return x.shape[:-1] + net.shape[-1:]
+
+
+_TENSOR_NURBS = {}
+
+
+def _tensor_nurbs_kernel(n):
+    """The kernel of NURBS in ``n`` variables: one differentiable kind a knot vector, then the
+    net, the weights and the points."""
+    if n not in _TENSOR_NURBS:
+        kinds = tuple(f"knots_{a}" for a in range(n)) + ("control", "weight", "point")
+        _TENSOR_NURBS[n] = _jax_ffi.Kernel(
+            "tensor_nurbs_eval", "lekalo_tensor_nurbs", kinds, _tensor_nurbs_out_shape
+        )
+    return _TENSOR_NURBS[n]
+
+
+def tensor_nurbs_eval(knots, control_points, weights, x, degrees):
+    """``S(x)`` of the tensor-product NURBS in ``N`` variables with degrees ``degrees`` (a tuple
+    of ``N`` Python ints), knot vectors ``knots`` (a tuple of ``N`` 1-D arrays), Euclidean
+    coefficients ``control_points`` (``(n_1, ..., n_N, dim)``, or ``(n_1, ..., n_N)`` for a
+    scalar function) and positive ``weights`` (``(n_1, ..., n_N)``), at the points ``x`` of
+    shape ``(..., N)``. Returns ``x.shape[:-1] + (dim,)`` (``x.shape[:-1]`` for scalar
+    coefficients), bit-for-bit ``lekalo.TensorNurbs(knots, control_points, degrees,
+    weights)(x)``.
+
+    Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
+    respect to ``control_points``, ``weights``, ``x`` and ``knots``, by lekalo's kernels as XLA
+    custom calls (``lekalo.tensor_nurbs_jvp`` / ``_vjp``: the rational basis
+    ``R_k = B_k w_k / W`` on the ``Π (p_a + 1)`` block a point touches, ``B_k (P_k − S) / W``
+    for the weights, the quotient rule ``(A_a − W_a S) / W`` for the points;
+    ``lekalo.tensor_nurbs_knot_jvp`` / ``_vjp`` for the interior knots of each variable, with
+    ``bspline_eval``'s conventions). The degrees are constants.
+    """
+    name = "tensor_nurbs_eval"
+    _require_x64(name)
+    if isinstance(degrees, (int, np.integer)) or not hasattr(degrees, "__len__"):
+        raise InputError(f"lekalo.jax.{name}: degrees must be a tuple of Python ints, one a variable")
+    degrees = tuple(_degree(d, f"degrees[{a}]", name) for a, d in enumerate(degrees))
+    n = len(degrees)
+    if n == 0:
+        raise InputError(f"lekalo.jax.{name}: degrees is empty; a tensor NURBS has at least one variable")
+    if not hasattr(knots, "__len__") or len(knots) != n:
+        raise InputError(
+            f"lekalo.jax.{name}: knots must be a tuple of {n} 1-D arrays, one a variable"
+        )
+    knots = tuple(_float64(k, f"knots[{a}]", name) for a, k in enumerate(knots))
+    ctrl = _float64(control_points, "control_points", name)
+    w = _float64(weights, "weights", name)
+    x = _float64(x, "x", name)
+    if ctrl.ndim not in (n, n + 1):
+        raise InputError(
+            f"lekalo.jax.{name}: control_points must be (n_1, ..., n_{n}, dim) or (n_1, ..., "
+            f"n_{n}), got shape {ctrl.shape}"
+        )
+    if w.shape != ctrl.shape[:n]:
+        raise InputError(
+            f"lekalo.jax.{name}: weights must be one a net point, shape {ctrl.shape[:n]}, got {w.shape}"
+        )
+    for a, (k, p) in enumerate(zip(knots, degrees)):
+        if k.ndim != 1 or k.shape[0] != ctrl.shape[a] + p + 1:
+            raise InputError(
+                f"lekalo.jax.{name}: knots[{a}] must be 1-D with {ctrl.shape[a] + p + 1} knots "
+                f"(net size {ctrl.shape[a]} + degree {p} + 1), got shape {k.shape}"
+            )
+    if x.ndim < 1 or x.shape[-1] != n:
+        raise InputError(
+            f"lekalo.jax.{name}: x must have shape (..., {n}), the coordinates on the last "
+            f"axis, got {x.shape}"
+        )
+    scalar = ctrl.ndim == n
+    c = ctrl[..., None] if scalar else ctrl
+    static = (("n_vars", n),) + tuple((f"degree_{a}", p) for a, p in enumerate(degrees))
+    out = _tensor_nurbs_kernel(n)(static, (), (*knots, c, w, x.reshape(-1, n)))
     out = out.reshape(x.shape[:-1] + c.shape[-1:])
     return out[..., 0] if scalar else out

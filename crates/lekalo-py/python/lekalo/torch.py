@@ -5,7 +5,10 @@ lekalo's NumPy kernels, differentiable in reverse mode (``loss.backward()``,
 - ``bspline_eval(knots, control_points, u, degree)``: ``C(u)`` of a B-spline curve;
 - ``nurbs_eval(knots, control_points, weights, u, degree)``: ``C(u)`` of a NURBS curve;
 - ``bspline_surface_eval(knots_u, knots_v, control_points, u, v, degree_u, degree_v)``;
+- ``nurbs_surface_eval(knots_u, knots_v, control_points, weights, u, v, degree_u, degree_v)``:
+  ``S(u, v)`` of a NURBS surface;
 - ``tensor_bspline_eval(knots, control_points, x, degrees)``: ``N``-variate tensor splines;
+- ``tensor_nurbs_eval(knots, control_points, weights, x, degrees)``: ``N``-variate tensor NURBS;
 - ``fit_least_squares(points, params, t, k=3, *, w=None)`` and
   ``fit_smoothing(x, y, w=None, lam=...)``: the control points of the fits, differentiable with
   respect to the data.
@@ -24,9 +27,10 @@ Limits, each with a clear error:
 - float64 tensors only (``torch.float64``; ``lekalo.InputError`` otherwise);
 - first derivatives in reverse mode: no ``torch.func.jvp`` / forward-mode AD, no double
   backward (``create_graph=True`` derivatives of the backward are not tracked);
-- the knots of the four evaluations may ask for their gradient (the interior knots':
+- the knots of the six evaluations may ask for their gradient (the interior knots':
   ``lekalo.bspline_curve_knot_vjp``, ``lekalo.nurbs_curve_knot_vjp``,
-  ``lekalo.bspline_surface_knot_vjp``, ``lekalo.tensor_bspline_knot_vjp``; the ``degree + 1``
+  ``lekalo.bspline_surface_knot_vjp``, ``lekalo.tensor_bspline_knot_vjp``,
+  ``lekalo.nurbs_surface_knot_vjp``, ``lekalo.tensor_nurbs_knot_vjp``; the ``degree + 1``
   first and last of a direction are held fixed, their gradient zero); the knots of the fits,
   the degrees, fit parameters and weights are constants (plain arrays or tensors whose
   gradient is not asked for);
@@ -53,7 +57,9 @@ __all__ = [
     "bspline_eval",
     "nurbs_eval",
     "bspline_surface_eval",
+    "nurbs_surface_eval",
     "tensor_bspline_eval",
+    "tensor_nurbs_eval",
     "fit_least_squares",
     "fit_smoothing",
 ]
@@ -301,6 +307,69 @@ def bspline_surface_eval(knots_u, knots_v, control_points, u, v, degree_u, degre
     return _BSplineSurface.apply(net, u, v, ku, kv, (int(degree_u), int(degree_v)))
 
 
+class _NurbsSurface(torch.autograd.Function):
+    @staticmethod
+    def forward(ctx, net, w, u, v, ku_t, kv_t, degrees):
+        c, ws, a, b, ku, kv = _np(net), _np(w), _np(u), _np(v), _np(ku_t), _np(kv_t)
+        batch, (wb, ab, bb) = _batch_of(c, 3, (ws, 2), (a, 1), (b, 1))
+        ctx.save_for_backward(net, w, u, v, ku_t, kv_t)
+        ctx.args = (ku, kv, degrees, batch, wb, ab, bb)
+        vals = _looped(
+            lambda cc, ww, x, y: _lekalo.nurbs_surface_jvp(*degrees, ku, kv, cc, ww, x, y)[0],
+            batch,
+            (c, True),
+            (ws, wb),
+            (a, ab),
+            (b, bb),
+        )
+        return _out(vals, net)
+
+    @staticmethod
+    def backward(ctx, g):
+        net, w, u, v, ku_t, kv_t = ctx.saved_tensors
+        ku, kv, degrees, batch, wb, ab, bb = ctx.args
+        arrays = ((_np(net), True), (_np(w), wb), (_np(u), ab), (_np(v), bb), (_np(g), True))
+        gc, gw, gu, gv = _looped(
+            lambda cc, ww, x, y, gg: _lekalo.nurbs_surface_vjp(*degrees, ku, kv, cc, ww, x, y, gg),
+            batch,
+            *arrays,
+        )
+        gku = gkv = None
+        if ctx.needs_input_grad[4] or ctx.needs_input_grad[5]:
+            gku, gkv = _looped(
+                lambda cc, ww, x, y, gg: _lekalo.nurbs_surface_knot_vjp(
+                    *degrees, ku, kv, cc, ww, x, y, gg
+                ),
+                batch,
+                *arrays,
+            )
+            gku = _out(_batch_sum(gku, batch), ku_t) if ctx.needs_input_grad[4] else None
+            gkv = _out(_batch_sum(gkv, batch), kv_t) if ctx.needs_input_grad[5] else None
+        axes = tuple(range(len(batch)))
+        if not wb and batch:
+            gw = gw.sum(axis=axes)
+        if not ab and batch:
+            gu = gu.sum(axis=axes)
+        if not bb and batch:
+            gv = gv.sum(axis=axes)
+        return _out(gc, net), _out(gw, w), _out(gu, u), _out(gv, v), gku, gkv, None
+
+
+def nurbs_surface_eval(knots_u, knots_v, control_points, weights, u, v, degree_u, degree_v):
+    """``S(u, v)`` of the NURBS surface with the Euclidean net ``control_points``
+    (``(..., nu, nv, dim)``) and positive ``weights`` (``(nu, nv)`` or with the batch axes) at
+    pairs ``u``, ``v`` (``(m,)`` each, or with the batch axes); differentiable with respect to
+    the net, the weights, ``u``, ``v`` and the interior knots."""
+    name = "nurbs_surface_eval"
+    net = _tensor(control_points, "control_points", name)
+    w = _tensor(weights, "weights", name)
+    u = _tensor(u, "u", name)
+    v = _tensor(v, "v", name)
+    ku = _knots(knots_u, "the knots", name)
+    kv = _knots(knots_v, "the knots", name)
+    return _NurbsSurface.apply(net, w, u, v, ku, kv, (int(degree_u), int(degree_v)))
+
+
 # -- tensor-product splines ----------------------------------------------------------------------
 
 
@@ -357,6 +426,67 @@ def tensor_bspline_eval(knots, control_points, x, degrees):
     x = _tensor(x, "x", name)
     knots = [_knots(k, "the knots", name) for k in knots]
     return _TensorSpline.apply(ctrl, x, tuple(int(d) for d in degrees), *knots)
+
+
+class _TensorNurbs(torch.autograd.Function):
+    @staticmethod
+    def forward(ctx, ctrl, w, x, degrees, *knots_t):
+        n = len(degrees)
+        c, ws, p, knots = _np(ctrl), _np(w), _np(x), [_np(k) for k in knots_t]
+        batch, (wb, xb) = _batch_of(c, n + 1, (ws, n), (p, 2))
+        ctx.save_for_backward(ctrl, w, x, *knots_t)
+        ctx.args = (knots, degrees, batch, wb, xb)
+        vals = _looped(
+            lambda cc, ww, pp: _lekalo.tensor_nurbs_jvp(knots, cc, degrees, ww, pp)[0],
+            batch,
+            (c, True),
+            (ws, wb),
+            (p, xb),
+        )
+        return _out(vals, ctrl)
+
+    @staticmethod
+    def backward(ctx, g):
+        ctrl, w, x, *knots_t = ctx.saved_tensors
+        knots, degrees, batch, wb, xb = ctx.args
+        arrays = ((_np(ctrl), True), (_np(w), wb), (_np(x), xb), (_np(g), True))
+        gc, gw, gx = _looped(
+            lambda cc, ww, pp, gg: _lekalo.tensor_nurbs_vjp(knots, cc, degrees, ww, pp, gg),
+            batch,
+            *arrays,
+        )
+        axes = tuple(range(len(batch)))
+        if not wb and batch:
+            gw = gw.sum(axis=axes)
+        if not xb and batch:
+            gx = gx.sum(axis=axes)
+        gks = [None] * len(knots)
+        if any(ctx.needs_input_grad[4:]):
+            got = _looped(
+                lambda cc, ww, pp, gg: _lekalo.tensor_nurbs_knot_vjp(knots, cc, degrees, ww, pp, gg),
+                batch,
+                *arrays,
+            )
+            gks = [
+                _out(_batch_sum(gk, batch), kt) if wanted else None
+                for gk, kt, wanted in zip(got, knots_t, ctx.needs_input_grad[4:])
+            ]
+        return (_out(gc, ctrl), _out(gw, w), _out(gx, x), None, *gks)
+
+
+def tensor_nurbs_eval(knots, control_points, weights, x, degrees):
+    """``S(x)`` of the tensor-product NURBS in ``N`` variables (``knots`` a sequence of ``N``
+    1-D arrays, ``degrees`` of ``N`` ints) with Euclidean coefficients ``control_points``
+    (``(..., n_1, ..., n_N, dim)``) and positive ``weights`` (``(n_1, ..., n_N)`` or with the
+    batch axes) at the points ``x`` (``(m, N)`` or ``(..., m, N)``): ``(..., m, dim)``;
+    differentiable with respect to the coefficients, the weights, ``x`` and ``knots`` (the
+    interior knots of each variable; the ``degree + 1`` first and last are held fixed)."""
+    name = "tensor_nurbs_eval"
+    ctrl = _tensor(control_points, "control_points", name)
+    w = _tensor(weights, "weights", name)
+    x = _tensor(x, "x", name)
+    knots = [_knots(k, "the knots", name) for k in knots]
+    return _TensorNurbs.apply(ctrl, w, x, tuple(int(d) for d in degrees), *knots)
 
 
 # -- fits ----------------------------------------------------------------------------------------

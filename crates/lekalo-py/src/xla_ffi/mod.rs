@@ -20,7 +20,11 @@
 //! - `surface`: tensor-product B-spline surfaces, with respect to the knots, the net and
 //!   `(u, v)`;
 //! - `tensor`: tensor-product B-splines in `N` variables, with respect to the knots of each
-//!   direction, the net and the points.
+//!   direction, the net and the points;
+//! - `nurbs_surface`: NURBS surfaces, with respect to the knots, the net, the weights and
+//!   `(u, v)`;
+//! - `tensor_nurbs`: tensor-product NURBS in `N` variables, with respect to the knots of each
+//!   direction, the net, the weights and the points.
 //!
 //! Batching (`jax.vmap`): every argument and result may carry the same leading batch axes (the
 //! layout of `vmap_method="broadcast_all"`); a handler runs the kernel once a batch element.
@@ -80,9 +84,11 @@ mod fits;
 mod geometry;
 mod interpolate;
 mod nurbs;
+mod nurbs_surface;
 mod operands;
 mod surface;
 mod tensor;
+mod tensor_nurbs;
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -109,8 +115,10 @@ fn xla_ffi_handlers(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
         geometry::HANDLERS[1],
         interpolate::HANDLERS,
         nurbs::HANDLERS,
+        nurbs_surface::HANDLERS,
         surface::HANDLERS,
         tensor::HANDLERS,
+        tensor_nurbs::HANDLERS,
     ];
     for (name, handler) in all.into_iter().flatten() {
         d.set_item(name, *handler as usize)?;

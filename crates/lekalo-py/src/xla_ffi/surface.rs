@@ -130,7 +130,7 @@ impl<'a> Layout<'a> {
 /// `(u, v)` pairs from their flat `(m, 2)` layout (the element sizes are even, the last axis
 /// being checked to be 2), copied: the kernels take `&[[f64; 2]]`, and the slice-to-array
 /// view (`as_chunks`) is newer than the crate's minimum Rust.
-fn pairs(flat: &[f64]) -> Vec<[f64; 2]> {
+pub(super) fn pairs(flat: &[f64]) -> Vec<[f64; 2]> {
     flat.chunks_exact(2).map(|c| [c[0], c[1]]).collect()
 }
 

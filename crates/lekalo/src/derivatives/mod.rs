@@ -26,6 +26,9 @@
 //! - `nurbs.rs`: the same three for [`crate::NurbsCurve`], with respect to the control points,
 //!   the weights and the parameters.
 //! - `surface.rs`: the same three for [`crate::BSplineSurface`] at pairs `(u, v)`.
+//! - `nurbs_surface.rs`: the same three for [`crate::NurbsSurface`] at pairs `(u, v)`, with
+//!   respect to the net, the weights and the pairs (the quotient rule on `surface.rs`'s
+//!   homogeneous sums, `nurbs.rs`'s terms a control point); `nurbs_surface_tests.rs` its tests.
 //! - `interpolation.rs`: [`InterpolationMap`], the derivatives of interpolation at fixed
 //!   parameters and knots with respect to the data (a solve and an adjoint solve with one banded
 //!   factorisation).
@@ -43,6 +46,9 @@
 //!   its closest points to given points (with respect to the control points and the points).
 //! - `tensor.rs`: the same three for [`crate::TensorBSpline`] in `N` directions, at points of
 //!   `N` coordinates.
+//! - `tensor_nurbs.rs`: the same three for [`crate::TensorNurbs`], with respect to the net, the
+//!   weights and the points (the quotient rule on `tensor.rs`'s homogeneous values and
+//!   partials); `tensor_nurbs_tests.rs` its tests.
 //! - `control_cotangent.rs`: the control-point cotangent of a curve for batches of at least as
 //!   many parameters as control points (a gradient in the control points): the choice of its
 //!   two kernels, the cotangent check, and the A2.2 kernel with reciprocals precomputed a span,
@@ -66,10 +72,12 @@ mod interpolation;
 mod knots;
 mod located;
 mod nurbs;
+mod nurbs_surface;
 mod power_sums;
 mod slopes;
 mod surface;
 mod tensor;
+mod tensor_nurbs;
 #[cfg(test)]
 mod tests;
 
@@ -81,5 +89,7 @@ pub use geometry::{ArcLengthGradient, ClosestParameters, Cotangents};
 pub use interpolant::Interpolant;
 pub use interpolation::InterpolationMap;
 pub use nurbs::NurbsLinearization;
+pub use nurbs_surface::NurbsSurfaceLinearization;
 pub use surface::SurfaceLinearization;
 pub use tensor::TensorLinearization;
+pub use tensor_nurbs::TensorNurbsLinearization;

@@ -159,6 +159,61 @@ pub(super) fn vjp_point(
     }
 }
 
+/// One homogeneous control point's share of a rational JVP (`nurbs_surface.rs`,
+/// `tensor_nurbs.rs`): `d += R Ṗ + N ẇ (P − S) / W` with `R = N w / W`, for `pt = (w P, w)`
+/// (`dim + 1` numbers), `n` the product of its basis functions at the point, `weight` the
+/// point's `W` and `value` its `S`: the terms of [`jvp_point`] for a net.
+#[inline(always)]
+pub(super) fn jvp_cell(
+    pt: &[f64],
+    n: f64,
+    (weight, value): (f64, &[f64]),
+    (control_tangent, weight_tangent): (Option<&[f64]>, Option<f64>),
+    d: &mut [f64],
+) {
+    let wj = pt[value.len()];
+    if let Some(dp) = control_tangent {
+        let r = n * wj / weight;
+        for (x, v) in d.iter_mut().zip(dp) {
+            *x += r * v;
+        }
+    }
+    if let Some(dw) = weight_tangent {
+        let s = n * dw / weight;
+        for ((x, hc), c) in d.iter_mut().zip(pt).zip(value) {
+            *x += s * (hc / wj - c);
+        }
+    }
+}
+
+/// The transpose of [`jvp_cell`] for a cotangent `g`: `P̄ += R ḡ` into `control_cotangent`
+/// (the point's `dim` numbers) and `w̄ += N ḡ · (P − S) / W` into `weight_cotangent`.
+#[inline(always)]
+pub(super) fn vjp_cell(
+    pt: &[f64],
+    n: f64,
+    (weight, value): (f64, &[f64]),
+    g: &[f64],
+    (control_cotangent, weight_cotangent): (Option<&mut [f64]>, Option<&mut f64>),
+) {
+    let wj = pt[value.len()];
+    if let Some(gp) = control_cotangent {
+        let r = n * wj / weight;
+        for (x, gi) in gp.iter_mut().zip(g) {
+            *x += r * gi;
+        }
+    }
+    if let Some(gw) = weight_cotangent {
+        let dot: f64 = g
+            .iter()
+            .zip(pt)
+            .zip(value)
+            .map(|((gi, hc), c)| gi * (hc / wj - c))
+            .sum();
+        *gw += n * dot / weight;
+    }
+}
+
 impl NurbsCurve {
     /// Forward-mode derivative (JVP) of [`NurbsCurve::eval_batch`]: `out` receives `C(t_i)`
     /// (bit-for-bit `eval_batch`) and `tangent_out`

@@ -32,15 +32,15 @@ pub struct SurfaceLinearization {
 }
 
 /// Basis values and first derivatives in both directions at one pair.
-struct PairBasis {
-    u: PointBasis,
-    v: PointBasis,
+pub(super) struct PairBasis {
+    pub(super) u: PointBasis,
+    pub(super) v: PointBasis,
     /// One point, the inner sum of the tensor combination.
-    tmp: Vec<f64>,
+    pub(super) tmp: Vec<f64>,
 }
 
 impl PairBasis {
-    fn new(s: &BSplineSurface) -> Self {
+    pub(super) fn new(s: &BSplineSurface) -> Self {
         let (p, q) = s.degree();
         PairBasis {
             u: PointBasis::new(p),
@@ -84,7 +84,7 @@ pub(super) fn combine(
 
 impl BSplineSurface {
     /// Spans, basis values and derivatives at `(u, v)`; returns the net's corner `(row, col)`.
-    fn pair_basis(
+    pub(super) fn pair_basis(
         &self,
         cursors: &mut (crate::SpanCursor<'_>, crate::SpanCursor<'_>),
         [u, v]: [f64; 2],
@@ -100,7 +100,7 @@ impl BSplineSurface {
         ))
     }
 
-    fn cursors(&self) -> (crate::SpanCursor<'_>, crate::SpanCursor<'_>) {
+    pub(super) fn cursors(&self) -> (crate::SpanCursor<'_>, crate::SpanCursor<'_>) {
         let (p, q) = self.degree();
         (self.knots_u().span_cursor(p), self.knots_v().span_cursor(q))
     }

@@ -32,17 +32,17 @@ pub struct TensorLinearization {
 }
 
 /// Per point: the spans' first indices and the basis vectors of every direction.
-struct PointBases {
+pub(super) struct PointBases {
     scratch: Vec<BasisScratch>,
     offsets: Vec<usize>,
     values: Vec<f64>,
-    first: Vec<usize>,
+    pub(super) first: Vec<usize>,
     /// The multi-index of the odometer over the `Π_a (p_a + 1)` block.
     odometer: Vec<usize>,
 }
 
 impl PointBases {
-    fn new(s: &TensorBSpline) -> Self {
+    pub(super) fn new(s: &TensorBSpline) -> Self {
         let mut offsets = Vec::with_capacity(s.n_vars());
         let mut total = 0;
         for &p in s.degrees() {
@@ -59,7 +59,7 @@ impl PointBases {
     }
 
     /// Spans and basis vectors at `x` (P&T A2.2 per direction).
-    fn at(&mut self, s: &TensorBSpline, x: &[f64]) -> Result<()> {
+    pub(super) fn at(&mut self, s: &TensorBSpline, x: &[f64]) -> Result<()> {
         for (a, (&p, kv)) in s.degrees().iter().zip(s.knots()).enumerate() {
             let span = kv.find_span(p, x[a])?;
             let out = &mut self.values[self.offsets[a]..self.offsets[a] + p + 1];
@@ -71,7 +71,7 @@ impl PointBases {
 
     /// Calls `f(offset, weight)` for every net point of the block at the current point:
     /// `offset` its first number in the flat net, `weight = Π_a N_{k_a}(x_a)`.
-    fn for_each_cell(&mut self, s: &TensorBSpline, mut f: impl FnMut(usize, f64)) {
+    pub(super) fn for_each_cell(&mut self, s: &TensorBSpline, mut f: impl FnMut(usize, f64)) {
         let n = s.n_vars();
         let degrees = s.degrees();
         self.odometer.fill(0);
@@ -103,7 +103,7 @@ impl PointBases {
 
 impl TensorBSpline {
     /// The partial derivatives `∂S/∂x_a` at every point of `xs`, `m × N × dim`.
-    fn batch_partials(&self, xs: &[f64], m: usize) -> Result<Vec<f64>> {
+    pub(super) fn batch_partials(&self, xs: &[f64], m: usize) -> Result<Vec<f64>> {
         let (n, dim) = (self.n_vars(), self.dim());
         let total = check_scalars("partial derivatives (points × directions)", m, n * dim)?;
         let mut partials = vec![0.0; total];

@@ -14,18 +14,18 @@ use crate::points::Points;
 use crate::surface::bspline::BSplineSurface;
 
 /// Relative tolerance of the finite-difference comparisons.
-const FD_RTOL: f64 = 1e-7;
+pub(super) const FD_RTOL: f64 = 1e-7;
 
 /// Step of the central differences in the parameter (knot gaps are at least 0.2, parameters at
 /// least 0.02 from a knot, so both points of a difference lie in one polynomial piece).
-const FD_STEP: f64 = 1e-6;
+pub(super) const FD_STEP: f64 = 1e-6;
 
-fn max_abs(v: &[f64]) -> f64 {
+pub(super) fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| m.max(x.abs()))
 }
 
 /// `‖a − b‖_∞ ≤ rtol · max(‖b‖_∞, floor)`.
-fn assert_rel(a: &[f64], b: &[f64], rtol: f64, floor: f64, what: &str) {
+pub(super) fn assert_rel(a: &[f64], b: &[f64], rtol: f64, floor: f64, what: &str) {
     assert_eq!(a.len(), b.len(), "{what}: lengths");
     let err = a
         .iter()
@@ -38,7 +38,7 @@ fn assert_rel(a: &[f64], b: &[f64], rtol: f64, floor: f64, what: &str) {
     );
 }
 
-fn dot(a: &[f64], b: &[f64]) -> f64 {
+pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
@@ -227,7 +227,7 @@ proptest! {
 }
 
 /// A surface, pairs, a net tangent, pair tangents and a cotangent.
-type SurfaceCase = (
+pub(super) type SurfaceCase = (
     BSplineSurface,
     Vec<[f64; 2]>,
     Vec<f64>,
@@ -236,7 +236,7 @@ type SurfaceCase = (
 );
 
 /// A B-spline surface of degrees 0..=4 × 0..=4, dimension 1..=3, with pairs off its knots.
-fn surface_case() -> impl Strategy<Value = SurfaceCase> {
+pub(super) fn surface_case() -> impl Strategy<Value = SurfaceCase> {
     (
         (0usize..=4, 0usize..=4, 0usize..4, 0usize..4),
         1usize..=3,
