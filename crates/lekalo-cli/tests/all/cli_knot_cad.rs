@@ -654,3 +654,85 @@ fn join_takes_any_curves_one_after_another() {
         .code(2)
         .stderr(contains("member 2 starts 5e-1 from the end of member 1"));
 }
+
+/// An IGES file of the given entities (type, form, parameters), each with its own parameter
+/// lines and directory entries `2k + 1`, in millimetres.
+fn iges_of(entities: &[(u32, i32, &str)]) -> String {
+    let mut out = format!("{:<72}S{:>7}\n", "analytic", 1);
+    out += &format!("{:<72}G{:>7}\n", "1H,,1H;;", 1);
+    let (mut d, mut pd) = (String::new(), String::new());
+    let mut line = 1;
+    for (k, (ty, form, params)) in entities.iter().enumerate() {
+        let seq = 2 * k + 1;
+        d += &format!(
+            "{ty:>8}{line:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{seq:>7}\n",
+            0, 0, 0, 0, 0, 0, "00000000"
+        );
+        d += &format!(
+            "{ty:>8}{:>8}{:>8}{:>8}{form:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}\n",
+            0,
+            0,
+            1,
+            "",
+            "",
+            "",
+            0,
+            seq + 1
+        );
+        pd += &format!("{params:<64}{seq:>8}P{line:>7}\n");
+        line += 1;
+    }
+    out += &d;
+    out += &pd;
+    let t = format!("S      1G      1D{:>7}P{:>7}", 2 * entities.len(), line - 1);
+    out + &format!("{t:<72}T{:>7}\n", 1)
+}
+
+#[test]
+fn iges_analytic_surfaces_and_paths_are_read_and_the_rest_reported() {
+    // a sphere (196 over the point 116) and a 3-D path (106 form 12) are read; a cylinder
+    // without a face to bound it and an offset curve are not
+    let text = iges_of(&[
+        (116, 0, "116,1.,2.,3.;"),
+        (196, 0, "196,1,2.5;"),
+        (106, 12, "106,2,3,0.,0.,0.,1.,0.,0.,1.,1.,0.;"),
+        (123, 0, "123,0.,0.,1.;"),
+        (192, 0, "192,1,7,4.;"),
+        (130, 0, "130,5,1,0,0,0,0,1.,0.,1.,0.,0.,0.,1.,0.,1.;"),
+    ]);
+    let d = dir_with(&[("part.igs", &text)]);
+    lekalo()
+        .arg("convert")
+        .arg(p(&d, "part.igs"))
+        .arg("-o")
+        .arg(p(&d, "all.jsonl"))
+        .assert()
+        .success()
+        .stderr(
+            contains("read 1 curve(s) and 1 surface(s)")
+                .and(contains("skipped 2 entities:"))
+                .and(contains("IGES entity 192: an unbounded cylinder"))
+                .and(contains("IGES entity 130: an offset curve")),
+        );
+    let text = fs::read_to_string(p(&d, "all.jsonl")).unwrap();
+    let shapes: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(shapes.len(), 2);
+    assert!(
+        shapes.iter().any(|s| s["type"] == "nurbs_surface"),
+        "{text}"
+    );
+    assert!(
+        shapes.iter().any(|s| s["type"] == "bspline_curve"),
+        "{text}"
+    );
+    let out = lekalo()
+        .arg("info")
+        .arg(p(&d, "part.igs"))
+        .assert()
+        .success();
+    let info = String::from_utf8(out.get_output().stdout.clone()).unwrap();
+    assert_eq!(info.lines().count(), 2, "{info}");
+}

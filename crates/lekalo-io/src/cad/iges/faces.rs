@@ -84,7 +84,7 @@ pub(super) fn read_faces_with_progress(
     listed: usize,
     progress: &lekalo::Progress<'_>,
 ) -> IoResult<IgesRead> {
-    let (mut r, raw, independent, reasons) =
+    let (mut r, raw, independent, reasons, foreign) =
         read_entities(text, source, max_size, true, listed, progress)?;
     let mut cx = Faces {
         curves: HashMap::new(),
@@ -94,6 +94,7 @@ pub(super) fn read_faces_with_progress(
             .map(|(id, why)| (*id, why.as_str()))
             .collect(),
         raw: &raw,
+        foreign: &foreign,
         unit: r.scale_to_mm,
         max_size,
         spent: Cell::new(0),
@@ -197,6 +198,9 @@ struct Faces<'a> {
     surfaces: HashMap<u64, &'a Surface>,
     skips: HashMap<u64, &'a str>,
     raw: &'a HashMap<u64, Raw>,
+    /// The analytic surfaces (108, 190–198): their NURBS parameters are not IGES's, so the
+    /// parameter-space curves of their boundaries are not used.
+    foreign: &'a std::collections::HashSet<u64>,
     unit: f64,
     /// The read's size limit (`--max-size`), in control points.
     max_size: usize,
@@ -233,7 +237,7 @@ impl Faces<'_> {
         } else if self.surfaces.contains_key(&id) {
             format!("its {what} D{id} is a surface, not a {what}")
         } else {
-            format!("its {what} D{id} is not an entity lekalo reads (100, 104, 110, 112, 114, 126, 128, 102; swept surfaces 118, 120, 122 only outside faces), or not in the file")
+            format!("its {what} D{id} is not an entity lekalo reads (100, 102, 104, 106, 108, 110, 112, 114, 126, 128, 190 to 198; swept surfaces 118, 120, 122 only outside faces), or not in the file")
         }
     }
 
@@ -340,7 +344,7 @@ impl Faces<'_> {
     }
 
     /// The loop of boundary `id` (an entity 142).
-    fn boundary(&self, id: u64, surface: &Surface) -> Result<ReadLoop, String> {
+    fn boundary(&self, id: u64, (sid, surface): (u64, &Surface)) -> Result<ReadLoop, String> {
         let Some(e) = self.raw.get(&id).filter(|e| e.ty == "142") else {
             return Err(self.why_not(id, "boundary (curve on a parametric surface, entity 142)"));
         };
@@ -369,12 +373,12 @@ impl Faces<'_> {
                 .map(|()| plane)
                 .map_err(|why| format!("boundary D{id}: {why}"))
         };
-        self.assemble(id, surface, model, plane)
+        self.assemble(id, (sid, surface), model, plane)
     }
 
     /// The loop of boundary `id` (an entity 141, §4.31): its curves in order, each reversed
     /// where `SENSE = 2`, with their parameter-space curves.
-    fn boundary_141(&self, id: u64, surface: &Surface) -> Result<ReadLoop, String> {
+    fn boundary_141(&self, id: u64, (sid, surface): (u64, &Surface)) -> Result<ReadLoop, String> {
         let Some(e) = self.raw.get(&id).filter(|e| e.ty == "141") else {
             return Err(self.why_not(id, "boundary (entity 141)"));
         };
@@ -434,18 +438,24 @@ impl Faces<'_> {
                 .and_then(|kk| k.checked_add(3 + kk))
                 .ok_or_else(|| format!("boundary D{id}: K = {kk} is not a count"))?;
         }
-        self.assemble(id, surface, model, plane)
+        self.assemble(id, (sid, surface), model, plane)
     }
 
     /// The loop of boundary `id` from its model-space pieces and, when read, its
-    /// parameter-space pieces (or why not), paired in order.
+    /// parameter-space pieces (or why not), paired in order; on an analytic surface `sid`
+    /// (108, 190–198) without the parameter-space pieces, which are in IGES's parameters.
     fn assemble(
         &self,
         id: u64,
-        surface: &Surface,
+        (sid, surface): (u64, &Surface),
         mut model: Vec<(u64, Curve)>,
         plane: Result<Vec<(u64, Curve)>, String>,
     ) -> Result<ReadLoop, String> {
+        let plane = if self.foreign.contains(&sid) {
+            Err(format!("its surface D{sid} is an analytic surface (entity 108 or 190 to 198) read as a NURBS whose parameters are not IGES's: the parameter-space curves are not used"))
+        } else {
+            plane
+        };
         let pcurves: Result<Vec<Curve>, String> = plane
                 .and_then(|plane| {
                     plane
@@ -532,7 +542,7 @@ impl Faces<'_> {
                 return Err(format!("declares N = {n} boundaries and lists {k}"));
             }
             let b = Self::pointer(e, id, at, "a boundary BDPT")?;
-            let (lp, lids, w) = self.boundary_141(b, surface)?;
+            let (lp, lids, w) = self.boundary_141(b, (sptr, surface))?;
             why = why.or(w);
             loops.push(lp);
             ids.push(lids);
@@ -590,7 +600,7 @@ impl Faces<'_> {
         let outer = if n1 == 0 || pto == 0 {
             Self::domain_loop(surface)?
         } else {
-            self.boundary(pto, surface)?
+            self.boundary(pto, (pts, surface))?
         };
         let mut why = outer.2;
         let mut ids = vec![outer.1];
@@ -604,7 +614,7 @@ impl Faces<'_> {
                 ));
             }
             let b = Self::pointer(e, id, k, "an inner boundary PTI")?;
-            let (lp, lids, w) = self.boundary(b, surface)?;
+            let (lp, lids, w) = self.boundary(b, (pts, surface))?;
             why = why.or(w);
             inner.push(lp);
             ids.push(lids);

@@ -7,7 +7,7 @@ use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points, Pro
 use super::composite::{self, SUBORDINATE_COMPOSITE};
 use super::faces::{self, Raw};
 use super::fields::{count, fields, real, unit};
-use super::{conics, matrix, splines, swept, IgesRead};
+use super::{analytic, conics, matrix, splines, swept, IgesRead};
 use crate::error::{IoError, IoResult, Location};
 use crate::object::Object;
 use crate::shape::{Shape, Surface};
@@ -16,7 +16,13 @@ use crate::step_read::{Skips, StepSkipped, SKIPPED_LISTED};
 /// Parameter `k` of an entity's fields as a real; the error names it and quotes what is
 /// written (a number beyond a double, `1.D+400`, or a word, `NaN`).
 /// Why an entity of the faces' topology is not read by [`read_iges`].
-const NOT_READ: &str = "not read (lekalo reads entities 100, 102, 104, 110, 112, 114, 118, 120, 122, 126 and 128; trimmed and bounded surfaces with their boundaries as faces, `--faces`)";
+const NOT_READ: &str = "not read (lekalo reads entities 100, 102, 104, 106, 108, 110, 112, 114, 118, 120, 122, 126, 128 and 190 to 198; trimmed and bounded surfaces with their boundaries as faces, `--faces`)";
+
+/// Why an offset curve (entity 130) is not read.
+const OFFSET_CURVE: &str = "an offset curve (entity 130) is not read: the offset C(t) + d N(t) of a free-form curve moves along its unit normal, whose length is a square root, so it is no NURBS; the offsets that are (of a line, of a circle) are not recognised either";
+
+/// Why an offset surface (entity 140) is not read.
+const OFFSET_SURFACE: &str = "an offset surface (entity 140) is not read: the offset S(u, v) + d N(u, v) of a free-form surface moves along its unit normal, whose length is a square root, so it is no NURBS; the offsets that are (of a plane, a cylinder, a sphere) are not recognised either";
 
 /// The model-space curves of a boundary (entity 141: `TYPE, PREF, SPTR, N`, then per curve
 /// `CRVPT, SENSE, K, PSCPT(1..K)`; IGES 5.3 §4.26), as far as the fields go.
@@ -38,7 +44,7 @@ fn boundary_curves(f: &[String]) -> Vec<usize> {
 /// Why a swept surface (118, 120, 122) is not read when faces are.
 const SWEPT_IN_FACES: &str = "a swept surface (ruled surface, surface of revolution or tabulated cylinder) is read as a surface, not as the surface of a face: its NURBS parametrisation is not IGES's, so the curves of a boundary in its parameters would land elsewhere";
 
-fn real_at(f: &[String], k: usize) -> Result<f64, String> {
+pub(super) fn real_at(f: &[String], k: usize) -> Result<f64, String> {
     let Some(text) = f.get(k) else {
         return Err(format!("parameter {k} is missing"));
     };
@@ -54,12 +60,14 @@ fn real_at(f: &[String], k: usize) -> Result<f64, String> {
 }
 
 /// What [`read_entities`] gives: the read, the raw entities by sequence number, the
-/// independent surfaces and the reasons of the skipped entities (with `topology`).
+/// independent surfaces, the reasons of the skipped entities (with `topology`), and the
+/// analytic surfaces read (108, 190–198), whose NURBS parameters are not IGES's.
 pub(super) type Entities = (
     IgesRead,
     std::collections::HashMap<u64, Raw>,
     Vec<u64>,
     std::collections::HashMap<u64, String>,
+    std::collections::HashSet<u64>,
 );
 
 /// Reads the rational B-spline curves (126) and surfaces (128) of an IGES file.
@@ -252,6 +260,10 @@ pub(super) fn read_entities(
     // and the curves that boundaries (141, 142) point at
     let mut composites = Vec::new();
     let mut pointed_at = std::collections::HashSet::new();
+    // analytic surfaces (108, 190–198), built after the loop from the points (116),
+    // directions (123) and curves they point at
+    let mut refs = analytic::Refs::default();
+    let mut pending = Vec::new();
     let entities = d.len() / 2;
     if entities > max_size {
         return Err(IoError::OverLimit {
@@ -311,6 +323,15 @@ pub(super) fn read_entities(
                 "100"
                     | "102"
                     | "104"
+                    | "106"
+                    | "108"
+                    | "116"
+                    | "123"
+                    | "190"
+                    | "192"
+                    | "194"
+                    | "196"
+                    | "198"
                     | "141"
                     | "142"
                     | "110"
@@ -323,24 +344,17 @@ pub(super) fn read_entities(
                     | "128"
             )
         {
-            if matches!(
-                ty.as_str(),
-                "106"
-                    | "108"
-                    | "130"
-                    | "140"
-                    | "143"
-                    | "144"
-                    | "190"
-                    | "192"
-                    | "194"
-                    | "196"
-                    | "198"
-            ) {
+            let reason = match ty.as_str() {
+                "143" | "144" => NOT_READ,
+                "130" => OFFSET_CURVE,
+                "140" => OFFSET_SURFACE,
+                _ => "",
+            };
+            if !reason.is_empty() {
                 skipped.push(StepSkipped {
                     id: seq,
                     entity: format!("IGES entity {ty}"),
-                    reason: NOT_READ.into(),
+                    reason: reason.into(),
                 });
             }
             continue;
@@ -441,6 +455,37 @@ pub(super) fn read_entities(
                 ))),
             }
         };
+        if ty == "116" || ty == "123" {
+            // the points and directions of analytic surfaces, which point at them
+            refs.add(&ty, seq, &f, unit_mm, motion.as_ref());
+            continue;
+        }
+        if ty == "106" {
+            match analytic::copious(&field(b, 4), &f, unit_mm) {
+                Ok(shape) => {
+                    charge(seq, shape_size(&shape))?;
+                    shapes.push((seq, place(shape, motion.as_ref()).map_err(lib)?));
+                }
+                Err(reason) => skipped.push(StepSkipped {
+                    id: seq,
+                    entity: format!("IGES entity 106 form {}", field(b, 4)),
+                    reason,
+                }),
+            }
+            continue;
+        }
+        if matches!(ty.as_str(), "108" | "190" | "192" | "194" | "196" | "198") {
+            // built once every point, direction and curve is read
+            match analytic::Analytic::from_parameters(&ty, &field(b, 4), &f, unit_mm) {
+                Ok(s) => pending.push((seq, s, motion, alone)),
+                Err(reason) => skipped.push(StepSkipped {
+                    id: seq,
+                    entity: format!("IGES entity {ty}"),
+                    reason,
+                }),
+            }
+            continue;
+        }
         if ty == "141" || ty == "142" {
             // not read without the faces; the curves they point at are boundaries, so a
             // composite among them is not built as a curve of its own
@@ -647,6 +692,58 @@ pub(super) fn read_entities(
             }
         }
     }
+    let mut foreign = std::collections::HashSet::new();
+    if !pending.is_empty() {
+        let curves: std::collections::HashMap<u64, usize> = shapes
+            .iter()
+            .enumerate()
+            .filter(|(_, (_, s))| matches!(s, Shape::Curve(_)))
+            .map(|(k, (id, _))| (*id, k))
+            .collect();
+        let faces = if topology {
+            analytic::face_curves(&raw)
+        } else {
+            std::collections::HashMap::new()
+        };
+        let mut built = Vec::new();
+        for (seq, s, motion, alone) in pending {
+            let curve = |id: u64| match curves.get(&id).map(|&k| &shapes[k].1) {
+                Some(Shape::Curve(c)) => Some(c.clone()),
+                _ => None,
+            };
+            let bounds: Option<Vec<[f64; 3]>> =
+                faces.get(&seq).filter(|_| s.unbounded()).map(|ids| {
+                    let mut pts = Vec::new();
+                    for id in ids {
+                        if let Some(Shape::Curve(c)) = curves.get(id).map(|&k| &shapes[k].1) {
+                            let cp = c.control_points();
+                            if cp.dim() == 3 {
+                                pts.extend(
+                                    cp.as_slice().chunks_exact(3).map(|p| [p[0], p[1], p[2]]),
+                                );
+                            }
+                        }
+                    }
+                    pts
+                });
+            match s.build(&refs, &curve, bounds.as_deref(), motion.as_ref()) {
+                Ok(shape) => {
+                    charge(seq, shape_size(&shape))?;
+                    if topology && alone && !s.unbounded() {
+                        independent.push(seq);
+                    }
+                    foreign.insert(seq);
+                    built.push((seq, shape));
+                }
+                Err(reason) => skipped.push(StepSkipped {
+                    id: seq,
+                    entity: s.entity().into(),
+                    reason,
+                }),
+            }
+        }
+        shapes.extend(built);
+    }
     if progress.is_active() {
         // complete: a flag set this late does not discard the result
         let _ = progress.step(READING, entities as u64, entities as u64);
@@ -673,5 +770,15 @@ pub(super) fn read_entities(
         raw,
         independent,
         reasons,
+        foreign,
     ))
+}
+
+/// The control points and knots of a curve or surface, as counted against the size limit.
+fn shape_size(s: &Shape) -> usize {
+    match s {
+        Shape::Curve(c) => c.control_points().len() + c.knots().as_slice().len(),
+        Shape::Surface(s) => s.control_points().len(),
+        _ => 0,
+    }
 }
