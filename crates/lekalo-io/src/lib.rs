@@ -20,6 +20,7 @@
 //! | STEP ISO 10303-21 AP203/AP214/AP242 B-spline/NURBS curves and surfaces | yes | yes | [`read_step`], [`StepWriter`] |
 //! | STEP faces (surfaces trimmed by loops of edges with pcurves), as `"type": "face"` envelopes; written as a B-rep (shared edges, shells) | yes | yes | [`read_step_faces`], [`StepWriter::add_faces`], [`face_to_json_line`], [`read_face`] |
 //! | IGES 5.3 rational B-spline curves (126) and surfaces (128) | yes | yes | [`read_iges`], [`IgesWriter`] |
+//! | IGES lines, arcs, conics, parametric splines, paths, composite curves, swept, analytic and bounded-plane surfaces (100–122, 190–198) as exact NURBS | yes | — | [`read_iges`] |
 //! | IGES trimmed and bounded surfaces (144, 143 with 142, 141 boundaries) as faces; faces written as 144 | yes | yes | [`read_iges_faces`], [`IgesWriter::add_faces`] |
 //! | OBJ: tessellated surfaces with normals, polylines | — | yes | [`grid_to_obj`] |
 //!
