@@ -1,5 +1,5 @@
-//! Faces of triangles (AP242 tessellated geometry, ISO 10303-42 ed. 4 §5.4, `tessellated_face`
-//! and `tessellated_surface_set` with their subtypes): `TRIANGULATED_FACE`,
+//! Faces of triangles (AP242 tessellated geometry, ISO 10303-42 ed. 4, geometric model schema:
+//! `tessellated_face` and `tessellated_surface_set` with their subtypes): `TRIANGULATED_FACE`,
 //! `COMPLEX_TRIANGULATED_FACE`, `TRIANGULATED_SURFACE_SET` and
 //! `COMPLEX_TRIANGULATED_SURFACE_SET`, read as triangle meshes ([`StepTriangulation`]) with
 //! their triangles as given: nothing is re-meshed.
