@@ -422,14 +422,18 @@ fn faces_json(r: &lekalo_io::StepRead, all: bool) -> Value {
 /// (`#` for STEP instances, `D` for IGES directory entries).
 fn faces_text(j: &Value, prefix: &str) -> String {
     let mut s = String::new();
+    // faces of triangles (AP242) are named only when the file has some
+    let tessellated = match j["tessellated_total"].as_u64() {
+        Some(n) if n > 0 => format!(
+            ", {n} tessellated ({} triangles)",
+            j["tessellated_triangles"]
+        ),
+        _ => String::new(),
+    };
     let _ = writeln!(
         s,
-        "faces           {} ({} with pcurves), {} tessellated ({} triangles), {} skipped",
-        j["faces_total"],
-        j["with_pcurves"],
-        j["tessellated_total"],
-        j["tessellated_triangles"],
-        j["skipped_total"]
+        "faces           {} ({} with pcurves){tessellated}, {} skipped",
+        j["faces_total"], j["with_pcurves"], j["skipped_total"]
     );
     for f in j["faces"].as_array().into_iter().flatten() {
         let loops: Vec<String> = f["loops"]
