@@ -101,8 +101,8 @@ pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface, Surfa
 pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};
 pub use step_read::{
     read_step, read_step_faces, read_step_limited, read_step_with_progress, skipped_by_kind,
-    SkippedKind, Skips, StepFace, StepRead, StepSkipped, OTHER_KINDS, SKIPPED_KINDS,
-    SKIPPED_LISTED, STEP_LOOP_RTOL, STEP_SHARED_VERTEX_RTOL,
+    SkippedKind, Skips, StepFace, StepRead, StepSkipped, StepTriangulation, OTHER_KINDS,
+    SKIPPED_KINDS, SKIPPED_LISTED, STEP_LOOP_RTOL, STEP_SHARED_VERTEX_RTOL,
 };
 pub use surface_plot::{surface_plot, ColorField, SurfacePlot, SURFACE_SAMPLES};
 pub use surface_samples::{surface_sample_table, SurfaceSampleSpec};

@@ -180,6 +180,7 @@ pub(crate) fn read_faces_of(
             shapes: r.shapes,
             skipped: r.skipped,
             faces: r.faces,
+            triangulations: Vec::new(),
             skipped_faces: r.skipped_faces,
             schema: None,
             length_unit: r.length_unit,
@@ -192,8 +193,18 @@ pub(crate) fn read_faces_of(
     };
     if !cx.is_quiet() {
         let with = r.faces.iter().filter(|f| f.pcurves.is_none()).count();
+        let tessellated = match r.triangulations.len() {
+            0 => String::new(),
+            n => format!(
+                ", and {n} face(s) of triangles ({} triangles: tessellated, written by `lekalo mesh`)",
+                r.triangulations
+                    .iter()
+                    .map(|t| t.triangles.len())
+                    .sum::<usize>()
+            ),
+        };
         crate::output::report(&format!(
-            "{name}: read {} face(s), {with} with pcurves; length unit {}",
+            "{name}: read {} face(s), {with} with pcurves{tessellated}; length unit {}",
             r.faces.len(),
             r.length_unit
         ));
@@ -270,12 +281,24 @@ pub(crate) fn convert_faces(
             "faces are written as jsonl (one face a line), step or iges, not \"{format}\": use -o FILE.jsonl, FILE.step or FILE.igs"
         ));
     }
-    let faces = match faces {
-        Some(f) => f,
-        None => read_faces_of(input, read, false, cx)?.faces,
+    let (faces, tessellated) = match faces {
+        Some(f) => (f, 0),
+        None => {
+            let r = read_faces_of(input, read, false, cx)?;
+            (r.faces, r.triangulations.len())
+        }
     };
     if faces.is_empty() && format != "jsonl" {
-        return bad_input(format!("{}: no faces to write", input.display()));
+        // faces of triangles are meshes, not faces bounded by curves on a surface
+        let only = if tessellated > 0 {
+            format!(
+                "; its {tessellated} face(s) of triangles are written by `lekalo mesh {} -o mesh.obj`",
+                input.display()
+            )
+        } else {
+            String::new()
+        };
+        return bad_input(format!("{}: no faces to write{only}", input.display()));
     }
     let text: String = match format.as_str() {
         "step" => {

@@ -210,6 +210,7 @@ pub(crate) fn run(a: &InfoArgs, cx: &Context) -> Result<()> {
                 shapes: Vec::new(),
                 skipped: lekalo_io::Skips::default(),
                 faces,
+                triangulations: Vec::new(),
                 skipped_faces: lekalo_io::Skips::default(),
                 schema: None,
                 length_unit: "millimetre".into(),
@@ -342,6 +343,8 @@ fn cad_info(
 
 /// `info --faces`: the number of faces read and skipped, and each face's id, name, surface,
 /// loops (edge counts and `EDGE_CURVE` ids, outer first) and whether its edges have pcurves;
+/// each face of triangles (AP242 tessellated faces) with its entity, name, linked surface and
+/// counts of points, triangles and normals;
 /// the faces not read, the first [`SKIPPED_FACES_LISTED`] by id (every one the read kept with
 /// `all`), and their count by type and reason (`skipped_kinds`).
 fn faces_json(r: &lekalo_io::StepRead, all: bool) -> Value {
@@ -369,6 +372,21 @@ fn faces_json(r: &lekalo_io::StepRead, all: bool) -> Value {
             })
         })
         .collect();
+    let tessellated: Vec<Value> = r
+        .triangulations
+        .iter()
+        .map(|t| {
+            json!({
+                "id": t.id,
+                "entity": t.entity,
+                "name": t.name,
+                "link": t.link,
+                "vertices": t.vertices.len(),
+                "triangles": t.triangles.len(),
+                "normals": t.normals.len(),
+            })
+        })
+        .collect();
     let listed = if all {
         usize::MAX
     } else {
@@ -389,8 +407,11 @@ fn faces_json(r: &lekalo_io::StepRead, all: bool) -> Value {
     json!({
         "faces_total": r.faces.len(),
         "with_pcurves": r.faces.iter().filter(|f| f.pcurves.is_none()).count(),
+        "tessellated_total": r.triangulations.len(),
+        "tessellated_triangles": r.triangulations.iter().map(|t| t.triangles.len()).sum::<usize>(),
         "skipped_total": r.skipped_faces.len(),
         "faces": faces,
+        "tessellated": tessellated,
         "skipped": skipped,
         "skipped_kinds": kinds,
     })
@@ -401,9 +422,17 @@ fn faces_json(r: &lekalo_io::StepRead, all: bool) -> Value {
 /// (`#` for STEP instances, `D` for IGES directory entries).
 fn faces_text(j: &Value, prefix: &str) -> String {
     let mut s = String::new();
+    // faces of triangles (AP242) are named only when the file has some
+    let tessellated = match j["tessellated_total"].as_u64() {
+        Some(n) if n > 0 => format!(
+            ", {n} tessellated ({} triangles)",
+            j["tessellated_triangles"]
+        ),
+        _ => String::new(),
+    };
     let _ = writeln!(
         s,
-        "faces           {} ({} with pcurves), {} skipped",
+        "faces           {} ({} with pcurves){tessellated}, {} skipped",
         j["faces_total"], j["with_pcurves"], j["skipped_total"]
     );
     for f in j["faces"].as_array().into_iter().flatten() {
@@ -432,6 +461,22 @@ fn faces_text(j: &Value, prefix: &str) -> String {
             f["surface"].as_str().unwrap_or_default(),
             f["surface_id"],
             loops.join(", "),
+        );
+    }
+    for t in j["tessellated"].as_array().into_iter().flatten() {
+        let link = t["link"]
+            .as_u64()
+            .map(|l| format!("  on {prefix}{l}"))
+            .unwrap_or_default();
+        let _ = writeln!(
+            s,
+            "{prefix}{} {}  {}  {} points, {} triangles, {} normals{link}",
+            t["id"],
+            t["name"],
+            t["entity"].as_str().unwrap_or_default(),
+            t["vertices"],
+            t["triangles"],
+            t["normals"],
         );
     }
     for k in j["skipped"].as_array().into_iter().flatten() {

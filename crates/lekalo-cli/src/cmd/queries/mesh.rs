@@ -65,16 +65,14 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
     // any other input is read once (standard input cannot be read twice) and holds faces when
     // its first line is a face envelope, whatever the file's name
     let (faces, read) = if crate::items::is_step(&a.input) || crate::items::is_iges(&a.input) {
-        (
-            Some(crate::cmd::files::cad::read_faces(&a.input, cx)?.faces),
-            None,
-        )
+        let r = crate::cmd::files::cad::read_faces(&a.input, cx)?;
+        (Some((r.faces, r.triangulations)), None)
     } else {
         let (text, name) = lekalo_io::read_input(&a.input)?;
         let faces = crate::cmd::files::cad::face_lines_in(&text, &name)?;
-        (faces, Some((text, name)))
+        (faces.map(|f| (f, Vec::new())), Some((text, name)))
     };
-    if let Some(faces) = faces {
+    if let Some((faces, triangulations)) = faces {
         // an edge without its (u, v) curve gets one by projection; a face that still cannot be
         // meshed is counted with the reason
         let mut ready: Vec<(usize, lekalo::Face)> = Vec::with_capacity(faces.len());
@@ -92,18 +90,23 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
             }
         }
         // one pass: each face meshed once, a face that fails listed with its error and the
-        // others meshed as they are without it
-        let meshed = lekalo::topology::mesh_faces_each(
-            &ready.iter().map(|(_, f)| f).collect::<Vec<_>>(),
-            a.tolerance,
-        )
-        .map_err(bad)?;
-        skipped.extend(
-            meshed
-                .failures
-                .iter()
-                .map(|(i, e)| (ready[*i].0, e.to_string())),
-        );
+        // others meshed as they are without it (a file of faces of triangles only has none)
+        let meshed = if ready.is_empty() {
+            None
+        } else {
+            Some(
+                lekalo::topology::mesh_faces_each(
+                    &ready.iter().map(|(_, f)| f).collect::<Vec<_>>(),
+                    a.tolerance,
+                )
+                .map_err(bad)?,
+            )
+        };
+        let (meshes, failures, above, repairs) = match meshed {
+            Some(m) => (m.meshes, m.failures, m.above_tolerance, m.repairs),
+            None => (Vec::new(), Vec::new(), Vec::new(), Vec::new()),
+        };
+        skipped.extend(failures.iter().map(|(i, e)| (ready[*i].0, e.to_string())));
         skipped.sort_by_key(|(k, _)| *k);
         let name = |k: usize| {
             let f = &faces[k];
@@ -113,7 +116,7 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
                 format!("#{} ({})", f.id, f.name)
             }
         };
-        if meshed.meshes.is_empty() {
+        if meshes.is_empty() && triangulations.is_empty() {
             let first = skipped
                 .first()
                 .map(|(k, r)| format!("; face {}: {r}", name(*k)))
@@ -137,8 +140,7 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
         }
         // trims repaired before meshing (clipped to the domain within the tolerance, edges
         // and holes of no length dropped): named, and listed in the summary
-        let repaired: Vec<(usize, String)> = meshed
-            .repairs
+        let repaired: Vec<(usize, String)> = repairs
             .iter()
             .map(|(i, r)| (ready[*i].0, r.to_string()))
             .collect();
@@ -146,21 +148,33 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
             crate::output::report(&format!("note: face {}: {r}", name(*k)));
         }
         // faces whose proved bound stayed above the tolerance: written, named, and exit 2
-        let coarse: Vec<(usize, String)> = meshed
-            .above_tolerance
+        let coarse: Vec<(usize, String)> = above
             .iter()
             .map(|(i, e)| (ready[*i].0, e.to_string()))
             .collect();
         for (k, r) in &coarse {
             crate::output::report(&format!("warning: face {}: {r}", name(*k)));
         }
-        let m = meshed.join().map_err(bad)?;
+        // the faces of triangles join as the file gives them: their triangles are the geometry
+        let meshed_faces = meshes.len();
+        let tessellated_triangles: usize = triangulations.iter().map(|t| t.triangles.len()).sum();
+        let all: Vec<lekalo::query::Mesh> = meshes
+            .into_iter()
+            .map(|(_, m)| m)
+            .chain(
+                triangulations
+                    .iter()
+                    .map(lekalo_io::StepTriangulation::to_mesh),
+            )
+            .collect();
+        let m = lekalo::topology::join_meshes(&all).map_err(bad)?;
+        drop(all);
         let listed = |l: &[(usize, String)]| -> Vec<serde_json::Value> {
             l.iter()
                 .map(|(k, r)| json!({"id": faces[*k].id, "name": faces[*k].name, "reason": r}))
                 .collect()
         };
-        let summary = json!({"faces": meshed.meshes.len(), "skipped": skipped.len(), "skipped_faces": listed(&skipped), "above_tolerance": listed(&coarse), "repaired": listed(&repaired), "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
+        let summary = json!({"faces": meshed_faces, "tessellated": triangulations.len(), "tessellated_triangles": tessellated_triangles, "skipped": skipped.len(), "skipped_faces": listed(&skipped), "above_tolerance": listed(&coarse), "repaired": listed(&repaired), "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
         write_mesh(a, cx, &m, &fmt, &summary)?;
         if let Some((k, _)) = coarse.first() {
             // the joined mesh's deviation is the largest of its faces'

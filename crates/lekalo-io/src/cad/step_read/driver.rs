@@ -179,16 +179,23 @@ fn read(
         let more = convert(&rd, placed.as_ref(), pass, with_faces, 0, &quiet)?;
         read.shapes.extend(more.shapes);
         read.faces.extend(more.faces);
+        read.triangulations.extend(more.triangulations);
     }
     // stable: the occurrences of an instance in the order of the passes
     read.shapes.sort_by_key(|(id, _)| *id);
     read.faces.sort_by_key(|f| f.id);
-    let shapes = plane_drawing(&rd, read.shapes, read.faces.is_empty())?;
+    read.triangulations.sort_by_key(|t| t.id);
+    let shapes = plane_drawing(
+        &rd,
+        read.shapes,
+        read.faces.is_empty() && read.triangulations.is_empty(),
+    )?;
     meter.finish();
     Ok(StepRead {
         shapes,
         skipped: read.skipped,
         faces: read.faces,
+        triangulations: read.triangulations,
         skipped_faces: read.skipped_faces,
         schema: parsed.schema,
         length_unit,
@@ -247,6 +254,7 @@ struct Converted {
     shapes: Vec<(u64, Shape)>,
     skipped: Skips,
     faces: Vec<super::StepFace>,
+    triangulations: Vec<super::StepTriangulation>,
     skipped_faces: Skips,
 }
 
@@ -406,7 +414,7 @@ fn convert(
         return Err(e);
     }
     skipped.finish();
-    let (faces, skipped_faces) = if with_faces {
+    let (faces, triangulations, skipped_faces) = if with_faces {
         let surfaces: HashMap<u64, &lekalo::Surface> = shapes
             .iter()
             .filter_map(|(id, s)| match s {
@@ -447,22 +455,23 @@ fn convert(
         if let Some(e) = too_large(rd) {
             return Err(e);
         }
-        r
+        (r.faces, r.triangulations, r.skipped)
     } else {
-        (Vec::new(), Skips::default())
+        (Vec::new(), Vec::new(), Skips::default())
     };
     rd.motion.set(None);
     Ok(Converted {
         shapes,
         skipped,
         faces,
+        triangulations,
         skipped_faces,
     })
 }
 
 /// Why tessellated geometry is skipped.
 const TESSELLATED_REASON: &str =
-    "tessellated geometry (a mesh of triangles or polylines), not a curve or surface";
+    "tessellated geometry (a mesh of triangles or polylines), not a curve or surface; faces of triangles are read with --faces (`lekalo mesh` writes them)";
 
 /// Why the other geometry ([`OTHER_GEOMETRY`]) is skipped.
 const OTHER_REASON: &str =

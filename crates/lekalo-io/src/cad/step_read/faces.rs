@@ -22,6 +22,7 @@ use super::analytic::Basis;
 use super::entities::{is_bspline_surface, Reader};
 use super::progress::{Meter, Pass};
 use super::skips::Skips;
+use super::tessellated::{CoordinateCache, StepTriangulation, TRIANGULATED};
 use super::{list, unnamed, StepSkipped, Why, P};
 use crate::error::IoResult;
 use crate::shape::Surface;
@@ -108,14 +109,20 @@ struct EdgeGeom {
     same_sense: bool,
 }
 
-/// Why a `TRIANGULATED_FACE` or `COMPLEX_TRIANGULATED_FACE` is not read as a face.
-const TRIANGLES_ONLY: &str = "a face of triangles (tessellated geometry), not a face bounded by curves on a surface; its surface, when it links one, is read as a surface by `lekalo convert` without --faces";
+/// The faces a pass reads: those bounded by curves on a surface, the faces of triangles, and
+/// those skipped with the reason.
+pub(super) struct ReadFaces {
+    pub(super) faces: Vec<StepFace>,
+    pub(super) triangulations: Vec<StepTriangulation>,
+    pub(super) skipped: Skips,
+}
 
-/// Reads every `ADVANCED_FACE` and `FACE_SURFACE` of the file: the faces read, and those
-/// skipped with the reason (faces of triangles, `TRIANGULATED_FACE` and
-/// `COMPLEX_TRIANGULATED_FACE`, among them), counted by kind with at most `listed` of them
-/// kept. `surfaces` are the surfaces read by id, `surface_skip` why another was not; `meter` is told the instances looked at and can cancel the read; `enter`
-/// says whether a face is read in this pass and sets the placement of its part.
+/// Reads every `ADVANCED_FACE` and `FACE_SURFACE` of the file, and every face or surface set
+/// of triangles ([`TRIANGULATED`], read as meshes by `tessellated.rs`): the faces read, and those
+/// skipped with the reason, counted by kind with at most `listed` of them kept. `surfaces` are
+/// the surfaces read by id, `surface_skip` why another was not; `meter` is told the instances
+/// looked at and can cancel the read; `enter` says whether a face is read in this pass and sets
+/// the placement of its part.
 pub(super) fn read_faces(
     rd: &Reader<'_>,
     ids: &[u64],
@@ -124,10 +131,12 @@ pub(super) fn read_faces(
     listed: usize,
     meter: &Meter<'_>,
     enter: &dyn Fn(u64) -> bool,
-) -> IoResult<(Vec<StepFace>, Skips)> {
+) -> IoResult<ReadFaces> {
     let mut faces = Vec::new();
+    let mut triangulations = Vec::new();
     let mut skipped = Skips::new(listed);
     let mut edges: HashMap<u64, Result<std::rc::Rc<EdgeGeom>, Why>> = HashMap::new();
+    let mut coordinates = CoordinateCache::new();
     for (k, &id) in ids.iter().enumerate() {
         meter.converted(Pass::Faces, k, ids.len())?;
         if !enter(id) {
@@ -138,17 +147,16 @@ pub(super) fn read_faces(
             .iter()
             .find_map(|n| Some((*n, inst.get(n)?)))
         else {
-            // a face of triangles (AP242 tessellated geometry) is a face lekalo does not read:
-            // listed, not dropped in silence
-            if let Some(entity) = ["TRIANGULATED_FACE", "COMPLEX_TRIANGULATED_FACE"]
-                .into_iter()
-                .find(|n| inst.get(n).is_some())
-            {
-                skipped.push(StepSkipped {
-                    id,
-                    entity: entity.to_string(),
-                    reason: TRIANGLES_ONLY.into(),
-                });
+            // a face of triangles (AP242 tessellated geometry): a mesh as given
+            if let Some(entity) = TRIANGULATED.iter().find(|n| inst.has(n)) {
+                match rd.triangulation(id, entity, &inst, &mut coordinates) {
+                    Ok(t) => triangulations.push(t),
+                    Err(reason) => skipped.push(StepSkipped {
+                        id,
+                        entity: (*entity).to_string(),
+                        reason,
+                    }),
+                }
             }
             continue;
         };
@@ -162,7 +170,11 @@ pub(super) fn read_faces(
         }
     }
     skipped.finish();
-    Ok((faces, skipped))
+    Ok(ReadFaces {
+        faces,
+        triangulations,
+        skipped,
+    })
 }
 
 fn read_face(

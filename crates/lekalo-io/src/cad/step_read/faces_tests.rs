@@ -513,8 +513,8 @@ fn line_pcurves_of_open_cascade_lie_under_their_edges() {
 }
 
 #[test]
-fn a_face_of_triangles_is_listed_as_skipped_not_dropped() {
-    // the plate and, beside it, a face of one triangle on the plate's plane (AP242)
+fn faces_of_triangles_are_read_as_meshes_beside_the_faces() {
+    // the plate and, beside it, faces of one triangle on the plate's plane (AP242)
     let r = read(&format!(
         "{PLATE}
 #200=COORDINATES_LIST('',3,((0.,0.,0.),(1.,0.,0.),(0.,1.,0.)));
@@ -522,19 +522,17 @@ fn a_face_of_triangles_is_listed_as_skipped_not_dropped() {
 #202=TRIANGULATED_FACE('',#200,3,((0.,0.,1.)),#5,(),((1,2,3)));"
     ));
     assert_eq!(r.faces.len(), 1, "the plate");
-    let listed: Vec<(u64, &str)> = r
-        .skipped_faces
+    assert!(r.skipped_faces.is_empty(), "{:?}", r.skipped_faces);
+    let read: Vec<(u64, &str, Option<u64>, usize)> = r
+        .triangulations
         .iter()
-        .map(|s| (s.id, s.entity.as_str()))
+        .map(|t| (t.id, t.entity.as_str(), t.link, t.triangles.len()))
         .collect();
     assert_eq!(
-        listed,
+        read,
         vec![
-            (201, "COMPLEX_TRIANGULATED_FACE"),
-            (202, "TRIANGULATED_FACE")
+            (201, "COMPLEX_TRIANGULATED_FACE", Some(5), 1),
+            (202, "TRIANGULATED_FACE", Some(5), 1)
         ]
     );
-    assert!(r.skipped_faces.listed()[0]
-        .reason
-        .contains("a face of triangles"));
 }

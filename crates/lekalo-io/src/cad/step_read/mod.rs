@@ -14,8 +14,11 @@
 //! coordinate bit for bit as written. Curves of dimension 2 (parameter-space curves of faces)
 //! are not scaled.
 //!
+//! With the faces ([`read_step_faces`]), the faces of triangles of AP242 are read as meshes
+//! ([`StepRead::triangulations`]).
+//!
 //! Everything else that is geometry (parabolas, hyperbolas, offsets, composite curves, unbounded
-//! lines and surfaces that nothing bounds, tessellated faces) is listed in [`StepRead::skipped`]
+//! lines and surfaces that nothing bounds, tessellated geometry) is listed in [`StepRead::skipped`]
 //! with the reason, so a caller can tell the user what was left out ([`skipped_by_kind`] groups
 //! them).
 //!
@@ -40,10 +43,11 @@
 //! | `bounds.rs` | the ranges of lines from their edges, and of unbounded surfaces from their faces |
 //! | `units.rs` | the file's length unit and its factor to millimetres; its plane angle unit |
 //! | `faces.rs` | faces: `ADVANCED_FACE`, bounds, edge loops, oriented edges, edge curves cut at their vertices, pcurves in the surface's parameters ([`StepFace`]) |
+//! | `tessellated.rs` | faces of triangles (`TRIANGULATED_FACE`, `COMPLEX_TRIANGULATED_FACE`, the triangulated surface sets) read as meshes: strips and fans decoded, `pnindex` followed, checked ([`StepTriangulation`]) |
 //! | `skips.rs` | the report of what was not read: counts by kind and the first entities listed ([`Skips`]), bounded by the kinds, not the entities |
 //! | `progress.rs` | the progress of a read through the library's hook: bytes parsed, instances converted per pass |
 //! | `driver.rs` | [`read_step`]: parse, unit, then each geometric entity read or listed as skipped; [`read_step_limited`] within a size limit |
-//! | `tests.rs`, `analytic_tests.rs`, `faces_tests.rs`, `pole_tests.rs` | tests |
+//! | `tests.rs`, `analytic_tests.rs`, `faces_tests.rs`, `pole_tests.rs`, `tessellated_tests.rs` | tests |
 
 mod analytic;
 #[cfg(test)]
@@ -60,6 +64,9 @@ mod parse;
 mod pole_tests;
 mod progress;
 mod skips;
+mod tessellated;
+#[cfg(test)]
+mod tessellated_tests;
 #[cfg(test)]
 mod tests;
 mod units;
@@ -67,6 +74,7 @@ mod units;
 pub use driver::{read_step, read_step_faces, read_step_limited, read_step_with_progress};
 pub use faces::{StepFace, STEP_LOOP_RTOL, STEP_SHARED_VERTEX_RTOL};
 pub use skips::{Skips, OTHER_KINDS, SKIPPED_KINDS, SKIPPED_LISTED};
+pub use tessellated::StepTriangulation;
 
 use crate::shape::Shape;
 
@@ -135,6 +143,10 @@ pub struct StepRead {
     pub skipped: Skips,
     /// The faces, in id order ([`read_step_faces`]; empty from [`read_step`]).
     pub faces: Vec<StepFace>,
+    /// The faces of triangles ([`read_step_faces`]; empty from [`read_step`]):
+    /// `TRIANGULATED_FACE`, `COMPLEX_TRIANGULATED_FACE` and the triangulated surface sets of
+    /// AP242, each a mesh as the file gives it, in id order.
+    pub triangulations: Vec<StepTriangulation>,
     /// The faces that were not read, with the reason ([`read_step_faces`]): counted by kind,
     /// the first listed in id order.
     pub skipped_faces: Skips,
