@@ -193,3 +193,27 @@ fn convert_faces_names_the_faces_of_triangles_it_does_not_write() {
             "no faces to write; its 2 face(s) of triangles are written by `lekalo mesh",
         ));
 }
+
+#[test]
+fn a_file_whose_only_faces_of_triangles_are_malformed_says_why() {
+    // the triangle points at a fifth point of a list of four
+    let bad = TRIANGLES
+        .replace("((1,2,3),(1,3,4))", "((1,2,5))")
+        .replace("(#2,#4)", "(#2)");
+    let bad = bad
+        .lines()
+        .filter(|l| !l.starts_with("#3=") && !l.starts_with("#4="))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let d = dir_with(&[("bad.stp", bad.as_str())]);
+    lekalo()
+        .args(["mesh", "--tolerance", "1e-3"])
+        .arg(p(&d, "bad.stp"))
+        .arg("-o")
+        .arg(p(&d, "bad.obj"))
+        .assert()
+        .code(2)
+        .stderr(contains("#2"))
+        .stderr(contains("no face to mesh"));
+    assert!(!d.path().join("bad.obj").exists());
+}

@@ -117,6 +117,15 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
             }
         };
         if meshes.is_empty() && triangulations.is_empty() {
+            if faces.is_empty() {
+                // nothing bounded by curves, and no face of triangles read: the reader listed
+                // what it skipped, with the reasons, on standard error
+                return bad_input(format!(
+                    "{}: no face to mesh (the faces the file holds could not be read: see the \
+                     reasons listed above)",
+                    a.input.display()
+                ));
+            }
             let first = skipped
                 .first()
                 .map(|(k, r)| format!("; face {}: {r}", name(*k)))
