@@ -232,8 +232,8 @@ impl<'a> Projector<'a> {
     }
 
     /// The foot of `x` on the surface near `warm` (Newton from there, accepted within
-    /// `on_surface`), else the closest point of the whole surface, its closed parameters moved
-    /// by whole periods to the copy nearest `warm`. A point at a pole takes its free parameter
+    /// `on_surface`), else the closest point of the whole surface; either way its closed
+    /// parameters moved by whole periods to the copy nearest `warm`. A point at a pole takes its free parameter
     /// from `warm`.
     fn project(&self, x: &[f64], warm: Option<[f64; 2]>) -> Result<([f64; 2], f64, Option<usize>)> {
         let mut found = None;
@@ -247,17 +247,19 @@ impl<'a> Projector<'a> {
             Some(f) => f,
             None => {
                 let p = self.query.project(x)?;
-                let mut uv = [p.uv.0, p.uv.1];
-                if let Some(w) = warm {
-                    for k in 0..2 {
-                        if let Some(per) = self.closure.period[k] {
-                            uv[k] += per * ((w[k] - uv[k]) / per).round();
-                        }
-                    }
-                }
-                (uv, p.distance)
+                ([p.uv.0, p.uv.1], p.distance)
             }
         };
+        // the copy nearest `warm`: Newton's steps are not bounded in a closed direction, and a
+        // step that overshoots by whole periods still brings the surface closer (a torus's
+        // tube, where the Hessian is near singular), landing on the foot point in another copy
+        if let Some(w) = warm {
+            for k in 0..2 {
+                if let Some(per) = self.closure.period[k] {
+                    uv[k] += per * ((w[k] - uv[k]) / per).round();
+                }
+            }
+        }
         let foot = self.eval(uv)?;
         let pole = self
             .poles

@@ -417,3 +417,78 @@ fn a_loop_round_the_cylinder_without_a_seam_edge_goes_round_once() {
     let exact = 2.0 * PI;
     assert!((area3(&m) - exact).abs() <= (exact + 4.0 * PI) * 1e-3);
 }
+
+/// A quarter of a torus's tube (major radius 20.5, minor 0.5, about z) from its outer equator to
+/// its top, half way round: along the top circle the foot point's Hessian is near singular and
+/// Newton's first steps from the previous sample overshoot `v` by whole periods onto the same
+/// point; the pcurve stays on the copy next to the previous sample, the loop does not go round,
+/// and the face meshes to its area `r (R π/2 + r) π`.
+#[test]
+fn a_quarter_of_a_torus_tube_keeps_each_foot_point_on_the_copy_next_to_the_last() {
+    use crate::surface::Placement;
+    let (big, small) = (20.5, 0.5);
+    let frame = Placement::new([0.0; 3], None, None).unwrap();
+    let torus = Surface::from(
+        NurbsSurface::torus(&frame, big, small, (0.0, 2.0 * PI), (0.0, 2.0 * PI)).unwrap(),
+    );
+    let circle = |z: f64, radius: f64, from: f64, to: f64| {
+        let c = Curve::from(
+            NurbsCurve::circular_arc(
+                &[0.0, 0.0, z],
+                &[1.0, 0.0, 0.0],
+                &[0.0, 1.0, 0.0],
+                radius,
+                from.min(to),
+                from.max(to),
+            )
+            .unwrap(),
+        );
+        if from < to {
+            c
+        } else {
+            c.reverse().unwrap()
+        }
+    };
+    let minor = |at: f64, from: f64, to: f64| {
+        let (x, y) = (at.cos(), at.sin());
+        let c = Curve::from(
+            NurbsCurve::circular_arc(
+                &[big * x, big * y, 0.0],
+                &[x, y, 0.0],
+                &[0.0, 0.0, 1.0],
+                small,
+                from.min(to),
+                from.max(to),
+            )
+            .unwrap(),
+        );
+        if from < to {
+            c
+        } else {
+            c.reverse().unwrap()
+        }
+    };
+    let edges = vec![
+        bare_edge(circle(0.0, big + small, 0.0, PI)),
+        bare_edge(minor(PI, 0.0, 0.5 * PI)),
+        bare_edge(circle(small, big, PI, 0.0)),
+        bare_edge(minor(0.0, 0.5 * PI, 0.0)),
+    ];
+    let f = Face::new(
+        torus,
+        Loop::new(edges).unwrap(),
+        vec![],
+        true,
+        LOOP_CLOSURE_RTOL,
+    )
+    .unwrap();
+    let g = f.with_projected_pcurves(0.1).unwrap();
+    check_on_surface(&g, 0.1);
+    let m = g.mesh(1e-3).unwrap();
+    let exact = small * (big * 0.5 * PI + small) * PI;
+    assert!(
+        (area3(&m) - exact).abs() <= exact * 1e-3,
+        "{} against {exact}",
+        area3(&m)
+    );
+}

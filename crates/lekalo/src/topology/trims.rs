@@ -13,7 +13,8 @@
 //!   dropped; an inner loop of no length (a hole of one point) is dropped; an outer loop of no
 //!   length bounds nothing and is refused;
 //! * no loop crosses itself or another loop (segments of the loops' polygons crossing
-//!   properly, found by a sweep over `u`; touching is allowed);
+//!   properly, found by a sweep over `u`; touching is allowed, and so is a crossing of two
+//!   consecutive edges within the tolerance of their common vertex);
 //! * every hole lies inside the outer loop, and no hole inside another hole (winding numbers,
 //!   Hormann & Agathos 2001).
 //!
@@ -343,7 +344,7 @@ impl Face {
             let closed = gap <= tol[0].hypot(tol[1]).max(f64::MIN_POSITIVE);
             loops.push((li, LoopPoints { edges, closed }));
         }
-        check_crossings(&loops)?;
+        check_crossings(&loops, tol)?;
         check_nesting(&loops, &closure)?;
         if repairs
             .iter()
@@ -381,13 +382,15 @@ impl Face {
     }
 }
 
-/// A segment of a loop's polygon: its ends, its loop and its edge.
+/// A segment of a loop's polygon: its ends, its loop, its edge, and the edge's place among the
+/// loop's edges kept.
 #[derive(Clone, Copy)]
 struct Segment {
     a: [f64; 2],
     b: [f64; 2],
     lp: usize,
     edge: usize,
+    pos: usize,
 }
 
 /// `(b − a) × (c − a)`: positive when `c` is left of the line from `a` to `b`.
@@ -423,16 +426,44 @@ fn proper_crossing(s: &Segment, t: &Segment) -> Option<[f64; 2]> {
     }
 }
 
+/// True when `at` is within `tol` (in each direction) of `p`.
+fn near(at: [f64; 2], p: [f64; 2], tol: [f64; 2]) -> bool {
+    (0..2).all(|d| (at[d] - p[d]).abs() <= tol[d])
+}
+
+/// True when a crossing at `at` of the edges at places `p` and `q` of loop `lp` is their touch at
+/// the vertex they share: the edges follow one another along the loop (the last and the first
+/// of a closed loop too) and `at` is within `tol` of where the first ends or the next starts.
+/// The ends of two edges at a vertex meet within the tolerance the loop closes within, not
+/// exactly (a file's sewing gap, or the projection of each edge onto the surface), so their
+/// last segments may poke across each other there by that much (as `BRepCheck_Wire` ignores
+/// the intersections of consecutive edges within their common vertex's tolerance).
+fn vertex_touch(lp: &LoopPoints, p: usize, q: usize, at: [f64; 2], tol: [f64; 2]) -> bool {
+    let n = lp.edges.len();
+    // edge k ends where edge k + 1 starts
+    let joint = |k: usize| -> bool {
+        lp.edges[k].1.last().is_some_and(|&e| near(at, e, tol))
+            || lp.edges[(k + 1) % n]
+                .1
+                .first()
+                .is_some_and(|&s| near(at, s, tol))
+    };
+    let follows = |a: usize, b: usize| (a + 1) % n == b && (lp.closed || b != 0);
+    (follows(p, q) && joint(p)) || (follows(q, p) && joint(q))
+}
+
 /// Refuses loops that cross themselves or each other: the segments of the closed loops'
 /// polygons (and of the others', without their closing segment) swept in `u`, each tested
-/// against those whose `u` range overlaps it.
-fn check_crossings(loops: &[(usize, LoopPoints)]) -> Result<()> {
+/// against those whose `u` range overlaps it. Consecutive edges touching at their common
+/// vertex within `tol` ([`vertex_touch`]) do not cross.
+fn check_crossings(loops: &[(usize, LoopPoints)], tol: [f64; 2]) -> Result<()> {
     let mut segs = Vec::new();
     for (li, lp) in loops {
-        let pts: Vec<([f64; 2], usize)> = lp
+        let pts: Vec<([f64; 2], usize, usize)> = lp
             .edges
             .iter()
-            .flat_map(|(ei, p)| p.iter().map(move |x| (*x, *ei)))
+            .enumerate()
+            .flat_map(|(pos, (ei, p))| p.iter().map(move |x| (*x, *ei, pos)))
             .collect();
         let n = pts.len();
         let closing = if lp.closed { n } else { n.saturating_sub(1) };
@@ -444,10 +475,12 @@ fn check_crossings(loops: &[(usize, LoopPoints)]) -> Result<()> {
                     b: b.0,
                     lp: *li,
                     edge: a.1,
+                    pos: a.2,
                 });
             }
         }
     }
+    let loop_of = |li: usize| loops.iter().find(|(i, _)| *i == li).map(|(_, l)| l);
     let lo = |s: &Segment| s.a[0].min(s.b[0]);
     let hi = |s: &Segment| s.a[0].max(s.b[0]);
     segs.sort_by(|s, t| lo(s).total_cmp(&lo(t)));
@@ -469,6 +502,11 @@ fn check_crossings(loops: &[(usize, LoopPoints)]) -> Result<()> {
                 });
             }
             if let Some(at) = proper_crossing(s, t) {
+                if s.lp == t.lp
+                    && loop_of(s.lp).is_some_and(|l| vertex_touch(l, s.pos, t.pos, at, tol))
+                {
+                    continue;
+                }
                 let (first, second) = if (t.lp, t.edge) <= (s.lp, s.edge) {
                     (t, s)
                 } else {

@@ -310,3 +310,37 @@ fn a_face_with_bad_trims_fails_alone_in_a_set() {
     assert_eq!(r.meshes.len(), 1);
     assert_eq!(r.meshes[0].1, good.mesh(1e-3).unwrap());
 }
+
+/// Two edges meeting at a vertex within the tolerance, the first running a little past the
+/// second (a sewing gap of the file, or each edge projected onto the surface on its own): their
+/// last segments cross within the tolerance of the vertex, which is a touch, and the face keeps
+/// its area; the same edges crossing far from the vertex still cross.
+#[test]
+fn consecutive_edges_poking_across_at_their_vertex_touch_but_crossing_away_from_it_cross() {
+    let lp = Loop::new(vec![
+        polyline(&[[1.0, 1.0], [3.0 + 2e-5, 1.0]]),
+        polyline(&[[3.0, 1.0 - 1e-5], [3.0, 3.0]]),
+        polyline(&[[3.0, 3.0], [1.0, 3.0]]),
+        polyline(&[[1.0, 3.0], [1.0, 1.0]]),
+    ])
+    .unwrap();
+    let f = face(lp, vec![]);
+    assert_eq!(f.checked_trims().unwrap(), (None, vec![]));
+    assert!((area_uv(&f) - 4.0).abs() < 1e-3, "{}", area_uv(&f));
+    let far = face(
+        Loop::new(vec![
+            polyline(&[[1.0, 1.0], [3.0, 1.0]]),
+            polyline(&[[3.0, 1.0], [2.5, 0.5], [2.5, 1.5], [3.0, 3.0]]),
+            polyline(&[[3.0, 3.0], [1.0, 3.0]]),
+            polyline(&[[1.0, 3.0], [1.0, 1.0]]),
+        ])
+        .unwrap(),
+        vec![],
+    );
+    let (lp, d) = defect(&far);
+    assert_eq!(lp, 0);
+    assert!(
+        matches!(d, TrimDefect::SelfCrossing { edges: [0, 1], at } if (at[0] - 2.5).abs() < 1e-9),
+        "{d:?}"
+    );
+}
