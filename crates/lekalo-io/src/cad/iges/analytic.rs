@@ -44,9 +44,8 @@ use lekalo::surface::{Placement, FULL_TURN};
 use lekalo::{BSplineCurve, BSplineSurface, NurbsSurface, Points};
 
 use super::faces::Raw;
-use super::fields::count;
+use super::fields::{count, real_at};
 use super::matrix;
-use super::read::real_at;
 use crate::cad::motion::Motion;
 use crate::object::Object;
 use crate::shape::{Shape, Surface};

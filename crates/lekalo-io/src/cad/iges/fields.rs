@@ -91,3 +91,20 @@ pub(super) fn unit(flag: usize, name: &str) -> Option<(String, f64)> {
     };
     Some((name.trim().to_string(), mm))
 }
+
+/// Parameter `k` of an entity's fields as a real ([`real`]), or why it is not one, named by its
+/// position (IGES 5.3 §2.2.2.4: reals as `1.5`, `-2.E-3`, `1.D0`).
+pub(super) fn real_at(f: &[String], k: usize) -> Result<f64, String> {
+    let Some(text) = f.get(k) else {
+        return Err(format!("parameter {k} is missing"));
+    };
+    real(text).ok_or_else(|| {
+        let t = text.trim();
+        let digits = t.bytes().any(|b| b.is_ascii_digit());
+        if digits && t.replace(['D', 'd'], "E").parse::<f64>().is_ok_and(f64::is_infinite) {
+            format!("parameter {k} is {t}, outside the range of a double")
+        } else {
+            format!("parameter {k} is \"{t}\", not a number (IGES writes reals as 1.5, -2.E-3 or 1.D0; NaN and infinities have no IGES form)")
+        }
+    })
+}

@@ -6,7 +6,7 @@ use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points, Pro
 
 use super::composite::{self, SUBORDINATE_COMPOSITE};
 use super::faces::{self, Raw};
-use super::fields::{count, fields, real, unit};
+use super::fields::{count, fields, real, real_at, unit};
 use super::{analytic, conics, matrix, splines, swept, IgesRead};
 use crate::error::{IoError, IoResult, Location};
 use crate::object::Object;
@@ -43,21 +43,6 @@ fn boundary_curves(f: &[String]) -> Vec<usize> {
 
 /// Why a swept surface (118, 120, 122) is not read when faces are.
 const SWEPT_IN_FACES: &str = "a swept surface (ruled surface, surface of revolution or tabulated cylinder) is read as a surface, not as the surface of a face: its NURBS parametrisation is not IGES's, so the curves of a boundary in its parameters would land elsewhere";
-
-pub(super) fn real_at(f: &[String], k: usize) -> Result<f64, String> {
-    let Some(text) = f.get(k) else {
-        return Err(format!("parameter {k} is missing"));
-    };
-    real(text).ok_or_else(|| {
-        let t = text.trim();
-        let digits = t.bytes().any(|b| b.is_ascii_digit());
-        if digits && t.replace(['D', 'd'], "E").parse::<f64>().is_ok_and(f64::is_infinite) {
-            format!("parameter {k} is {t}, outside the range of a double")
-        } else {
-            format!("parameter {k} is \"{t}\", not a number (IGES writes reals as 1.5, -2.E-3 or 1.D0; NaN and infinities have no IGES form)")
-        }
-    })
-}
 
 /// What [`read_entities`] gives: the read, the raw entities by sequence number, the
 /// independent surfaces, the reasons of the skipped entities (with `topology`), and the
