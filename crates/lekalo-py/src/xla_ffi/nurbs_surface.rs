@@ -20,10 +20,9 @@ use lekalo::{NurbsSurface, Points};
 
 use super::abi::{Call, In};
 use super::operands::{
-    cotangents, count_attr, count_error, element, element_mut, flags, last_axis, single, tangents,
-    Batch,
+    cotangents, count_error, element, element_mut, flags, last_axis, single, tangents, Batch,
 };
-use super::surface::pairs;
+use super::surface::{degrees, pairs};
 
 ffi_targets! {
     stem: "nurbs_surface",
@@ -117,10 +116,6 @@ impl<'a> Layout<'a> {
     fn uv(&self, res: &[In<'_>], b: usize) -> Vec<[f64; 2]> {
         pairs(element(res[4].data, self.sizes[4], b))
     }
-}
-
-fn degrees(call: &Call<'_>) -> Result<(usize, usize), String> {
-    Ok((count_attr(call, "degree_u")?, count_attr(call, "degree_v")?))
 }
 
 fn eval_body(call: &mut Call<'_>) -> Result<(), String> {

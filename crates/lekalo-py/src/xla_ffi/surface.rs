@@ -142,7 +142,8 @@ fn in_place(m: usize, (nu, nv): (usize, usize), (p, q): (usize, usize)) -> bool 
     m.saturating_mul((p + 1).saturating_mul(q + 1)) <= nu.saturating_mul(nv)
 }
 
-fn degrees(call: &Call<'_>) -> Result<(usize, usize), String> {
+/// The degrees `(p, q)` of a surface target (attributes `degree_u`, `degree_v`).
+pub(super) fn degrees(call: &Call<'_>) -> Result<(usize, usize), String> {
     Ok((count_attr(call, "degree_u")?, count_attr(call, "degree_v")?))
 }
 

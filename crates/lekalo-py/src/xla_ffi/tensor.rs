@@ -36,19 +36,21 @@ ffi_targets! {
 }
 
 /// Which tangents (JVP) and cotangents (VJP) are present, in operand order: the attributes
-/// `with_knots_0` … `with_knots_{N−1}`, `with_control` and `with_point`.
-fn present(call: &Call<'_>, n: usize) -> Vec<bool> {
+/// `with_knots_0` … `with_knots_{N−1}`, then those of `rest` (`with_control` and `with_point`
+/// here; the rational targets add `with_weight` between them).
+pub(super) fn present(call: &Call<'_>, n: usize, rest: &[&str]) -> Vec<bool> {
     let knots = (0..n).map(|a| flag(call, &format!("with_knots_{a}")));
-    knots
-        .chain([flag(call, "with_control"), flag(call, "with_point")])
-        .collect()
+    knots.chain(rest.iter().map(|r| flag(call, r))).collect()
 }
 
-/// The degrees, one a variable (attributes `n_vars`, `degree_0`, …).
-fn degrees(call: &Call<'_>) -> Result<Vec<usize>, String> {
+/// The degrees, one a variable (attributes `n_vars`, `degree_0`, …), of a tensor-product
+/// `what` ("spline", "NURBS").
+pub(super) fn degrees(call: &Call<'_>, what: &str) -> Result<Vec<usize>, String> {
     let n = count_attr(call, "n_vars")?;
     if n == 0 {
-        return Err("a tensor-product spline needs at least one variable".into());
+        return Err(format!(
+            "a tensor-product {what} needs at least one variable"
+        ));
     }
     (0..n)
         .map(|a| count_attr(call, &format!("degree_{a}")))
@@ -147,7 +149,7 @@ impl<'a> Layout<'a> {
 }
 
 fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
-    let degrees = degrees(call)?;
+    let degrees = degrees(call, "spline")?;
     let Call { args, rets, .. } = call;
     let layout = Layout::of(args, &degrees)?;
     let (_, sx) = layout.net_and_points();
@@ -168,9 +170,9 @@ fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
 }
 
 fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
-    let degrees = degrees(call)?;
+    let degrees = degrees(call, "spline")?;
     let n = degrees.len();
-    let present = present(call, n);
+    let present = present(call, n, &["with_control", "with_point"]);
     let Call { args, rets, .. } = call;
     let (res, tangents) = tangents_of(args, n + 2, &present)?;
     let (dk, [dc, dx]) = (&tangents[..n], [tangents[n], tangents[n + 1]]);
@@ -224,9 +226,9 @@ fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
 }
 
 fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
-    let degrees = degrees(call)?;
+    let degrees = degrees(call, "spline")?;
     let n = degrees.len();
-    let present = present(call, n);
+    let present = present(call, n, &["with_control", "with_point"]);
     let Call { args, rets, .. } = call;
     let (res, [g]) = tangents(args, n + 2, [true])?;
     let g = g.ok_or("no cotangent")?;

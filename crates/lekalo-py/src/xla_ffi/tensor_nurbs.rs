@@ -20,9 +20,10 @@ use lekalo::{Points, TensorNurbs};
 
 use super::abi::{Call, In};
 use super::operands::{
-    cotangents_of, count_attr, count_error, element, element_mut, flag, last_axis, single,
-    tangents, tangents_of, Batch,
+    cotangents_of, count_error, element, element_mut, last_axis, single, tangents, tangents_of,
+    Batch,
 };
+use super::tensor::{degrees, present};
 
 ffi_targets! {
     stem: "tensor_nurbs",
@@ -30,30 +31,6 @@ ffi_targets! {
     eval: eval_body,
     jvp: jvp_body,
     vjp: vjp_body,
-}
-
-/// Which tangents (JVP) and cotangents (VJP) are present, in operand order: the attributes
-/// `with_knots_0` … `with_knots_{N−1}`, `with_control`, `with_weight` and `with_point`.
-fn present(call: &Call<'_>, n: usize) -> Vec<bool> {
-    let knots = (0..n).map(|a| flag(call, &format!("with_knots_{a}")));
-    knots
-        .chain([
-            flag(call, "with_control"),
-            flag(call, "with_weight"),
-            flag(call, "with_point"),
-        ])
-        .collect()
-}
-
-/// The degrees, one a variable (attributes `n_vars`, `degree_0`, …).
-fn degrees(call: &Call<'_>) -> Result<Vec<usize>, String> {
-    let n = count_attr(call, "n_vars")?;
-    if n == 0 {
-        return Err("a tensor-product NURBS needs at least one variable".into());
-    }
-    (0..n)
-        .map(|a| count_attr(call, &format!("degree_{a}")))
-        .collect()
 }
 
 /// The residuals of every target (`N` knot vectors, the net, the weights, the points): the
@@ -129,7 +106,7 @@ impl<'a> Layout<'a> {
 }
 
 fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
-    let degrees = degrees(call)?;
+    let degrees = degrees(call, "NURBS")?;
     let Call { args, rets, .. } = call;
     let layout = Layout::of(args, &degrees)?;
     let (_, _, sx) = layout.net_weights_points();
@@ -145,9 +122,9 @@ fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
 }
 
 fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
-    let degrees = degrees(call)?;
+    let degrees = degrees(call, "NURBS")?;
     let n = degrees.len();
-    let present = present(call, n);
+    let present = present(call, n, &["with_control", "with_weight", "with_point"]);
     let Call { args, rets, .. } = call;
     let (res, tangents) = tangents_of(args, n + 3, &present)?;
     let (dk, [dc, dw, dx]) = (
@@ -200,9 +177,9 @@ fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
 }
 
 fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
-    let degrees = degrees(call)?;
+    let degrees = degrees(call, "NURBS")?;
     let n = degrees.len();
-    let present = present(call, n);
+    let present = present(call, n, &["with_control", "with_weight", "with_point"]);
     let Call { args, rets, .. } = call;
     let (res, [g]) = tangents(args, n + 3, [true])?;
     let g = g.ok_or("no cotangent")?;
