@@ -93,12 +93,13 @@ impl KnotVector {
             });
         }
         check_finite(Arg::Knots, knots)?;
-        // one branch-free pass (vectorised), the first offending knot searched only on failure
-        let sorted = knots
-            .iter()
-            .zip(&knots[1..])
-            .fold(true, |ok, (a, b)| ok & (b >= a));
-        if !sorted {
+        // one branch-free pass (vectorised): every gap is 0 or at least the smallest normal
+        // number (which implies sorted); the first offending knot searched only on failure
+        let gaps_ok = knots.iter().zip(&knots[1..]).fold(true, |ok, (a, b)| {
+            let gap = b - a;
+            ok & ((gap == 0.0) | (gap >= f64::MIN_POSITIVE))
+        });
+        if !gaps_ok {
             for i in 1..knots.len() {
                 if knots[i] < knots[i - 1] {
                     return Err(Error::KnotsNotSorted {
@@ -107,6 +108,7 @@ impl KnotVector {
                         previous: knots[i - 1],
                     });
                 }
+                check_gap(Arg::Knots, knots[i - 1], knots[i])?;
             }
         }
         let (min, max) = (knots[0], knots[knots.len() - 1]);
@@ -478,6 +480,47 @@ pub fn check_parameters(params: &[f64]) -> Result<()> {
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] naming `what` if `max − min` overflows.
+/// Refuses two distinct knots `a < b` closer than the smallest normal number
+/// (`f64::MIN_POSITIVE`, about 2.2e-308): in a span that narrow Cox–de Boor's ratios
+/// `N / (t_{i+j} − t_i)` (P&T Algorithm A2.2) overflow, and the basis would be `∞ · 0 = NaN`.
+/// Equal knots (a multiple knot) and every normal gap pass.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] naming the two knots and the fix.
+pub(crate) fn check_gap(what: impl Into<What>, a: f64, b: f64) -> Result<()> {
+    let gap = b - a;
+    if gap != 0.0 && gap.abs() < f64::MIN_POSITIVE {
+        return Err(Error::InvalidArgument {
+            what: what.into(),
+            reason: format!(
+                "knots {a} and {b} differ by {gap:e}, less than the smallest normal number \
+                 {min:e}, so the span between them cannot be evaluated; make them equal or \
+                 move them at least {min:e} apart",
+                a = readable(&a),
+                b = readable(&b),
+                min = f64::MIN_POSITIVE
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// [`check_gap`] for a knot `t` about to be inserted into the sorted `knots`: against its
+/// neighbours on both sides.
+///
+/// # Errors
+/// As [`check_gap`], with [`Arg::Knot`].
+pub(crate) fn check_inserted_gap(knots: &[f64], t: f64) -> Result<()> {
+    let i = knots.partition_point(|&x| x < t);
+    if i > 0 {
+        check_gap(Arg::Knot, knots[i - 1], t)?;
+    }
+    if let Some(&b) = knots.get(i) {
+        check_gap(Arg::Knot, t, b)?;
+    }
+    Ok(())
+}
+
 pub(crate) fn check_width(what: impl Into<What>, min: f64, max: f64) -> Result<()> {
     let what: What = what.into();
     if !(max - min).is_finite() {

@@ -7,6 +7,7 @@ use crate::curve::bezier::{BezierCurve, BezierSegment};
 use crate::curve::bspline::BSplineCurve;
 use crate::error::readable;
 use crate::error::{check_finite, Error, Result, MAX_SCALARS};
+use crate::knots::{check_gap, check_inserted_gap};
 use crate::points::Points;
 use crate::Arg;
 
@@ -41,6 +42,7 @@ impl BSplineCurve {
         if times == 0 {
             return Ok(self.clone());
         }
+        check_inserted_gap(self.knots.as_slice(), t)?;
         let p = self.degree;
         let s = self.knots.multiplicity(t);
         let total = s.saturating_add(times);
@@ -142,6 +144,12 @@ impl BSplineCurve {
         let (min, max) = self.domain();
         if let Some(&t) = x.iter().find(|&&t| !(t >= min && t <= max)) {
             return Err(Error::ParameterOutOfDomain { t, min, max });
+        }
+        for (i, &t) in x.iter().enumerate() {
+            check_inserted_gap(self.knots.as_slice(), t)?;
+            if i > 0 {
+                check_gap(Arg::Knot, x[i - 1], t)?;
+            }
         }
         let p = self.degree;
         let mut i = 0;
@@ -253,6 +261,7 @@ impl BSplineCurve {
                 ),
             });
         }
+        check_inserted_gap(self.knots.as_slice(), t)?;
         let p = self.degree;
         let dim = self.dim();
         let s = self.knots.multiplicity(t);

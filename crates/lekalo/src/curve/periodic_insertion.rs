@@ -6,7 +6,7 @@
 
 use crate::error::readable;
 use crate::error::{check_finite, Error, Result, MAX_SCALARS};
-use crate::knots::KnotVector;
+use crate::knots::{check_gap, KnotVector};
 use crate::points::{Points, PointsRef};
 use crate::Arg;
 
@@ -372,6 +372,8 @@ fn insert_once_into(
             ),
         });
     }
+    check_gap(Arg::Knot, t[l], x)?;
+    check_gap(Arg::Knot, x, t[l + 1])?;
     // 1-based l of FITPACK is l + 1: refused when l + 1 ≤ 2k and l + 1 ≥ n − 2k
     if periodic && l < 2 * k && l + 1 + 2 * k >= n {
         return Err(Error::InvalidArgument {

@@ -155,3 +155,55 @@ fn curry_schoenberg_counts_and_errors() {
         Err(Error::Degree { .. })
     ));
 }
+
+#[test]
+fn knots_closer_than_the_smallest_normal_number_are_refused() {
+    let tiny = f64::from_bits(1); // 5e-324, subnormal
+    let e = KnotVector::new(vec![0.0, 0.0, tiny, 1.0, 1.0]).unwrap_err();
+    assert!(matches!(e, Error::InvalidArgument { .. }), "{e:?}");
+    assert!(e.to_string().contains("smallest normal number"), "{e}");
+    // equal knots and the smallest normal gap pass
+    assert!(KnotVector::new(vec![0.0, 0.0, f64::MIN_POSITIVE, 1.0, 1.0]).is_ok());
+    assert!(KnotVector::new(vec![0.0, 0.0, 0.0, 1.0, 1.0]).is_ok());
+    // an unsorted vector is still named as such, wherever the subnormal gap is
+    assert!(matches!(
+        KnotVector::new(vec![0.0, tiny, 1.0, 0.5]),
+        Err(Error::InvalidArgument { .. })
+    ));
+    assert!(matches!(
+        KnotVector::new(vec![0.0, 1.0, 0.5, 0.5 + 1e-300]),
+        Err(Error::KnotsNotSorted { index: 2, .. })
+    ));
+}
+
+#[test]
+fn insertion_never_makes_a_span_too_narrow_to_evaluate() {
+    use crate::{BSplineCurve, Points};
+    let tiny = f64::from_bits(1);
+    let ctrl = Points::from_2d(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]]).unwrap();
+    let c = BSplineCurve::from_knot_vector(3, KnotVector::clamped_uniform(3, 4).unwrap(), ctrl)
+        .unwrap();
+    for t in [tiny, f64::MIN_POSITIVE / 2.0] {
+        assert!(matches!(
+            c.insert_knot(t, 1),
+            Err(Error::InvalidArgument { .. })
+        ));
+        assert!(matches!(
+            c.refine_knots(&[t]),
+            Err(Error::InvalidArgument { .. })
+        ));
+        assert!(c.split_at(t).is_err());
+    }
+    // two new knots too close to each other, each far enough from the old ones
+    let m = f64::MIN_POSITIVE;
+    assert!(matches!(
+        c.refine_knots(&[m, m + tiny]),
+        Err(Error::InvalidArgument { .. })
+    ));
+    assert!(c.refine_knots(&[m, 2.0 * m]).is_ok());
+    // a normal gap still inserts, and evaluates to finite values on both sides
+    let d = c.insert_knot(f64::MIN_POSITIVE, 1).unwrap();
+    for x in [0.0, f64::MIN_POSITIVE, 1e-300, 0.5, 1.0] {
+        assert!(d.eval(x).unwrap().iter().all(|v| v.is_finite()), "{x}");
+    }
+}
