@@ -717,6 +717,19 @@ def nurbs_surface_vjp(
     v: ArrayLike,
     cotangent: ArrayLike,
 ) -> Tuple[Array, Array, Array, Array]: ...
+def nurbs_surface_linearize(
+    degree_u: int,
+    degree_v: int,
+    knots_u: ArrayLike,
+    knots_v: ArrayLike,
+    control: ArrayLike,
+    weights: ArrayLike,
+    u: ArrayLike,
+    v: ArrayLike,
+) -> dict: ...
+def tensor_nurbs_linearize(
+    t: Sequence[ArrayLike], c: ArrayLike, k: Union[int, Sequence[int]], w: ArrayLike, x: ArrayLike
+) -> dict: ...
 def bspline_surface_linearize(
     degree_u: int,
     degree_v: int,

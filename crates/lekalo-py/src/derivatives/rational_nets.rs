@@ -7,8 +7,11 @@
 //! `(t, c, k, w, x)` as `TensorNurbs(t, c, k, w)(x)`.
 
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
-use super::{cotangent_arg, data_of, pairs, points_of, same_shape, values_and_tangent};
+use super::{
+    cotangent_arg, data_of, index_array, pairs, points_of, same_shape, values_and_tangent,
+};
 use crate::convert::{array, check_size, floats, IntArg};
 use crate::error::lib_err;
 use crate::surfaces::nurbs_surface_arg;
@@ -17,8 +20,10 @@ use crate::surfaces::nurbs_surface_arg;
 pub(super) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(nurbs_surface_jvp, m)?)?;
     m.add_function(wrap_pyfunction!(nurbs_surface_vjp, m)?)?;
+    m.add_function(wrap_pyfunction!(nurbs_surface_linearize, m)?)?;
     m.add_function(wrap_pyfunction!(tensor_nurbs_jvp, m)?)?;
     m.add_function(wrap_pyfunction!(tensor_nurbs_vjp, m)?)?;
+    m.add_function(wrap_pyfunction!(tensor_nurbs_linearize, m)?)?;
     Ok(())
 }
 
@@ -179,4 +184,81 @@ pub(crate) fn tensor_nurbs_vjp<'py>(
         array(py, gw, s.shape())?,
         array(py, gx, xa.shape())?,
     ))
+}
+
+/// The linearisation of NURBS surface evaluation at `(u, v)`
+/// (`lekalo::NurbsSurface::eval_batch_linearize`): a dict with `values`, `derivatives_u`,
+/// `derivatives_v` (`u.shape + (dim,)`, the values bit-for-bit the evaluation's), `first_u`,
+/// `first_v` (int64, `u.shape`) and `basis` (`u.shape + (degree_u + 1, degree_v + 1)`, the
+/// rational basis `R_kl = N_k M_l w_kl / W`), so that `S = Σ_kl basis[..., k, l]
+/// control[first_u + k, first_v + l]` and `∂S/∂w_kl = R_kl (P_kl − S) / w_kl`.
+#[pyfunction]
+#[pyo3(signature = (degree_u, degree_v, knots_u, knots_v, control, weights, u, v))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn nurbs_surface_linearize<'py>(
+    py: Python<'py>,
+    degree_u: IntArg,
+    degree_v: IntArg,
+    knots_u: &Bound<'py, PyAny>,
+    knots_v: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    weights: &Bound<'py, PyAny>,
+    u: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let degrees = (degree_u.count("degree_u")?, degree_v.count("degree_v")?);
+    let s = nurbs_surface_arg(degrees, knots_u, knots_v, control, weights)?;
+    let (uv, shape) = pairs(u, v)?;
+    let lin = py.detach(|| s.eval_batch_linearize(&uv)).map_err(lib_err)?;
+    let pts = [shape.as_slice(), &[s.dim()]].concat();
+    let d = PyDict::new(py);
+    d.set_item("values", array(py, lin.values, &pts)?)?;
+    d.set_item("derivatives_u", array(py, lin.derivatives_u, &pts)?)?;
+    d.set_item("derivatives_v", array(py, lin.derivatives_v, &pts)?)?;
+    d.set_item("first_u", index_array(py, lin.first_u, &shape)?)?;
+    d.set_item("first_v", index_array(py, lin.first_v, &shape)?)?;
+    let block = [shape.as_slice(), &[degrees.0 + 1, degrees.1 + 1]].concat();
+    d.set_item("basis", array(py, lin.basis, &block)?)?;
+    Ok(d)
+}
+
+/// The linearisation of `TensorNurbs(t, c, k, w)(x)` (`lekalo::TensorNurbs::
+/// eval_batch_linearize`): a dict with `values` (`x.shape[:-1] + trailing`, bit-for-bit the
+/// evaluation's), `partials` (`x.shape[:-1] + (N,) + trailing`, `∂S/∂x_a`), `first` (int64,
+/// `x.shape`: the first net index of every direction) and `basis` (`x.shape[:-1] + (k_1 + 1,
+/// …, k_N + 1)`: the rational basis `R = B w / W` of each point's block of the net).
+#[pyfunction]
+#[pyo3(signature = (t, c, k, w, x))]
+pub(crate) fn tensor_nurbs_linearize<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    c: &Bound<'py, PyAny>,
+    k: &Bound<'py, PyAny>,
+    w: &Bound<'py, PyAny>,
+    x: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (s, trailing) = crate::tensor_nurbs::tensor_nurbs_arg(t, c, k, w)?;
+    let (xa, lead) = points_of(x, s.n_vars(), s.dim())?;
+    let xs = xa.data();
+    let lin = py.detach(|| s.eval_batch_linearize(xs)).map_err(lib_err)?;
+    let block: Vec<usize> = s.degrees().iter().map(|p| p + 1).collect();
+    let d = PyDict::new(py);
+    d.set_item(
+        "values",
+        array(py, lin.values, &[lead.as_slice(), &trailing].concat())?,
+    )?;
+    d.set_item(
+        "partials",
+        array(
+            py,
+            lin.partials,
+            &[lead.as_slice(), &[s.n_vars()], &trailing].concat(),
+        )?,
+    )?;
+    d.set_item("first", index_array(py, lin.first, xa.shape())?)?;
+    d.set_item(
+        "basis",
+        array(py, lin.basis, &[lead.as_slice(), &block].concat())?,
+    )?;
+    Ok(d)
 }
