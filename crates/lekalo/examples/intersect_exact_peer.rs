@@ -11,7 +11,8 @@
 //! then the parameters and the point of each; an overlap is printed as its two ends' midpoint
 //! with `N` counting it once).
 //!
-//! `cargo run --release -p lekalo --example intersect_exact_peer -- [REPEATS]`
+//! `cargo run --release -p lekalo --example intersect_exact_peer -- [REPEATS [CASE]]` (CASE: only
+//! that case's index, e.g. under `perf record`)
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -66,9 +67,16 @@ fn main() -> Result<(), String> {
         })
         .transpose()?
         .unwrap_or(7);
+    let only: Option<usize> = std::env::args()
+        .nth(2)
+        .map(|c| c.parse().map_err(|_| format!("CASE {c:?} is not an index")))
+        .transpose()?;
     let cases: Value = serde_json::from_str(include_str!("../tests/data/intersect_exact.json"))
         .map_err(|e| e.to_string())?;
     for (k, case) in cases.as_array().ok_or("no cases")?.iter().enumerate() {
+        if only.is_some_and(|o| o != k) {
+            continue;
+        }
         let (a, b) = (bezier(&case["a"])?, bezier(&case["b"])?);
         let mut hits = Vec::new();
         let t = median_s(repeats, || {
