@@ -21,11 +21,20 @@
 // (ends within 1e-5) to count the loops. lekalo's points (DIR/lekalo_ssi_NAME.txt) are
 // measured the same way.
 //
+// Mode `exact` (occt_queries exact REPEATS FILE): the exact-answer curve-curve suite of
+// tests/data/intersect_exact.json, as bench/peers/intersect_exact_peers.py writes it to FILE
+// (a line a case: "K na x y ... nb x y ...", the control points of two planar Bezier curves),
+// each pair built as Geom2d_BSplineCurve (one piece, degree n - 1) and intersected by
+// Geom2dAPI_InterCurveCurve at tolerance 1e-9, timed as above; printed a line a case for the
+// script to check: "occt K SECONDS N t_a t_b x y ..." (a segment counted as the point at its
+// middle).
+//
 // Build (Debian: libocct-modeling-algorithms-dev libocct-modeling-data-dev):
 //   g++ -O2 -std=c++17 -I/usr/include/opencascade bench/peers/occt_queries.cpp -o occt_queries \
 //     -lTKMesh -lTKTopAlgo -lTKBRep -lTKGeomAlgo -lTKGeomBase -lTKG3d -lTKG2d -lTKMath -lTKernel
 // Usage: occt_queries [REPEATS] [PROJECT_POINTS] [ANSWERS_DIR]
 //        occt_queries ssi REPEATS DIR [CASE]   (CASE: only that workload, e.g. under callgrind)
+//        occt_queries exact REPEATS FILE
 // With ANSWERS_DIR, the answers are written there for bench/peers/compare_queries.py:
 // occt_project.txt (the distance of each projected point) and occt_intersect.txt (t_a t_b x y
 // of each intersection point); and the meshed face, occt_mesh.brep, for
@@ -38,6 +47,7 @@
 #include <Geom2dConvert_ApproxCurve.hxx>
 #include <Geom2d_OffsetCurve.hxx>
 #include <IntRes2d_IntersectionPoint.hxx>
+#include <IntRes2d_IntersectionSegment.hxx>
 #include <Geom2d_BSplineCurve.hxx>
 #include <GeomAPI_IntSS.hxx>
 #include <GeomAPI_ProjectPointOnCurve.hxx>
@@ -60,6 +70,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <functional>
 #include <vector>
@@ -232,7 +243,70 @@ static int ssi(int repeats, const std::string &dir, const std::string &only) {
   return 0;
 }
 
+// a planar Bezier curve of n control points as a one-piece B-spline, from the stream
+static Handle(Geom2d_BSplineCurve) bezier2d(std::istream &in) {
+  int n = 0;
+  in >> n;
+  if (n < 2) return nullptr;
+  TColgp_Array1OfPnt2d p(1, n);
+  for (int i = 1; i <= n; ++i) {
+    double x = 0, y = 0;
+    in >> x >> y;
+    p.SetValue(i, gp_Pnt2d(x, y));
+  }
+  TColStd_Array1OfReal k(1, 2);
+  TColStd_Array1OfInteger m(1, 2);
+  k.SetValue(1, 0.0), k.SetValue(2, 1.0), m.SetValue(1, n), m.SetValue(2, n);
+  return new Geom2d_BSplineCurve(p, k, m, n - 1);
+}
+
+static int exact(int repeats, const std::string &file) {
+  std::ifstream in(file);
+  if (!in) {
+    std::fprintf(stderr, "occt_queries exact: cannot read %s; intersect_exact_peers.py writes it\n",
+                 file.c_str());
+    return 1;
+  }
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream ls(line);
+    int k = -1;
+    ls >> k;
+    Handle(Geom2d_BSplineCurve) a = bezier2d(ls), b = bezier2d(ls);
+    if (k < 0 || a.IsNull() || b.IsNull()) {
+      std::fprintf(stderr, "occt_queries exact: bad case line in %s: %s\n", file.c_str(),
+                   line.c_str());
+      return 1;
+    }
+    Geom2dAPI_InterCurveCurve inter;
+    double t = median_s(repeats, [&] { inter.Init(a, b, 1e-9); });
+    std::string out;
+    int n = 0;
+    char buf[128];
+    for (int i = 1; i <= inter.NbPoints(); ++i, ++n) {
+      const IntRes2d_IntersectionPoint &ip = inter.Intersector().Point(i);
+      std::snprintf(buf, sizeof buf, " %.17g %.17g %.17g %.17g", ip.ParamOnFirst(),
+                    ip.ParamOnSecond(), ip.Value().X(), ip.Value().Y());
+      out += buf;
+    }
+    for (int i = 1; i <= inter.Intersector().NbSegments(); ++i, ++n) {
+      const IntRes2d_IntersectionSegment &sg = inter.Intersector().Segment(i);
+      const IntRes2d_IntersectionPoint &p0 = sg.FirstPoint(), &p1 = sg.LastPoint();
+      gp_Pnt2d m = p0.Value().XY() * 0.5 + p1.Value().XY() * 0.5;
+      std::snprintf(buf, sizeof buf, " %.17g %.17g %.17g %.17g",
+                    0.5 * (p0.ParamOnFirst() + p1.ParamOnFirst()),
+                    0.5 * (p0.ParamOnSecond() + p1.ParamOnSecond()), m.X(), m.Y());
+      out += buf;
+    }
+    std::printf("occt %d %.6e %d%s\n", k, t, n, out.c_str());
+  }
+  return 0;
+}
+
 int main(int argc, char **argv) {
+  if (argc > 1 && std::string(argv[1]) == "exact")
+    return exact(argc > 2 ? std::atoi(argv[2]) : 5,
+                 argc > 3 ? argv[3] : "target/peers-occt/answers/intersect_exact.txt");
   if (argc > 1 && std::string(argv[1]) == "ssi")
     return ssi(argc > 2 ? std::atoi(argv[2]) : 5, argc > 3 ? argv[3] : "target/peers-occt/answers",
                argc > 4 ? argv[4] : "");

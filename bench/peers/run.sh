@@ -85,8 +85,10 @@ fi
 # 1,000: it takes milliseconds a point) and as many parameter-at-length queries; compare per
 # query. compare_queries.py then checks the answers: projections point by point, intersections;
 # occt_mesh_deviation.py measures Open CASCADE's mesh against the surface (a few minutes).
+occt_queries=()
 if occt_build occt_queries GeomAPI_ProjectPointOnCurve.hxx -lTKMesh -lTKTopAlgo -lTKBRep \
     -lTKGeomAlgo -lTKGeomBase -lTKG3d -lTKG2d -lTKMath -lTKernel; then
+  occt_queries=(target/peers-occt/occt_queries)
   cargo build --quiet --release -p lekalo --example query_peer
   answers=target/peers-occt/answers
   mkdir -p "$answers"
@@ -109,3 +111,13 @@ if occt_build occt_queries GeomAPI_ProjectPointOnCurve.hxx -lTKMesh -lTKTopAlgo 
   "$venv/bin/python" bench/peers/occt_mesh_deviation.py --brep "$answers/occt_mesh.brep" \
     --lekalo target/release/lekalo
 fi
+
+# Curve-curve intersection on the exact-answer suite (crates/lekalo/tests/data/intersect_exact.json),
+# side by side: lekalo (examples/intersect_exact_peer.rs, before and after the peers), bezier's
+# geometric and algebraic strategies, and Open CASCADE's Geom2dAPI_InterCurveCurve in C++
+# (occt_queries exact, when it was built above); each case checked against the exact answers
+# (which peer passes which case) and timed (docs/performance/queries.md)
+cargo build --quiet --release -p lekalo --example intersect_exact_peer
+uptime
+"$venv/bin/python" bench/peers/intersect_exact_peers.py "$repeats" \
+  target/release/examples/intersect_exact_peer "${occt_queries[@]}"

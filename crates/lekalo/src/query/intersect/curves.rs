@@ -225,7 +225,10 @@ impl QueryCurve {
     /// `other` (its middle is projected). A group of transversal solutions is one
     /// [`Contact::Crossing`] (or [`Contact::End`]) at its least gap. Any other group, and a
     /// single solution whose gap stays below `tolerance / 100` at the probes either side of it,
-    /// is grown to where the gap exceeds the tolerance: an overlap if the gap stays below
+    /// is one contact refined from its least-gap solution when the stretch within the tolerance
+    /// about it is short (bracketed by doubling steps inside the domain, clear of the other
+    /// groups, and not within `tolerance / 100` across: no overlap); otherwise it is grown to
+    /// where the gap exceeds the tolerance: an overlap if the gap stays below
     /// `tolerance / 100` across it (its ends put on the curves' end points they are at), otherwise
     /// a contact at its least gap, refined and named by [`QueryCurve::classify_contact`]. A
     /// transversal crossing (angle `θ` between the tangents) needs no probe: the gap there is
@@ -291,7 +294,55 @@ impl QueryCurve {
                     .filter(|t| **t >= lo && **t <= hi)
                     .all(|&t| gap(t).0 <= tolerance / 100.0)
             };
+            let best = g.iter().fold(g[0], |b, r| if r.2 < b.2 { *r } else { b });
+            // the stretch about a group of contact solutions where the gap is within the
+            // tolerance, bracketed by steps doubling from the probe's (to 1% of the domain at
+            // most): when it ends on both sides inside the domain, clear of the other groups, and
+            // the gap does not stay within a hundredth of the tolerance across it (no overlap),
+            // the group is one contact, refined from its least-gap solution as a lone contact
+            // is, without the growth by bisection and the golden-section search below (some two
+            // hundred projections)
+            let short_contact = || {
+                let span = hi - lo;
+                let side = |from: f64, dir: f64| {
+                    let mut h = PROBE * span;
+                    while h <= 1e-2 * span {
+                        let t = from + dir * h;
+                        if t < lo || t > hi {
+                            return None;
+                        }
+                        if gap(t).0 > tolerance {
+                            return Some(t);
+                        }
+                        h *= 2.0;
+                    }
+                    None
+                };
+                let (Some(l), Some(r)) = (side(a0, -1.0), side(a1, 1.0)) else {
+                    return false;
+                };
+                let clear = groups
+                    .iter()
+                    .enumerate()
+                    .all(|(i, n)| i == gi || n.iter().all(|x| x.0 < l || x.0 > r));
+                clear
+                    && !(1..10)
+                        .all(|i| gap(l + (r - l) * f64::from(i) / 10.0).0 <= tolerance / 100.0)
+            };
             if !transversal && ((g.len() > 1 && a1 > a0) || probe()) {
+                if short_contact() {
+                    for (t_a, t_b, contact) in
+                        self.classify_contact(other, best.0, best.1, tolerance)
+                    {
+                        out.push(CurveIntersection::Point {
+                            t_a,
+                            t_b,
+                            point: at(t_a),
+                            contact,
+                        });
+                    }
+                    continue;
+                }
                 // grow to where the gap exceeds the tolerance (bisection, 60 steps each side),
                 // one other group at a time: an overlap that reaches another group (a crossing
                 // of another stretch of a curve inside the overlap) goes on past it
@@ -334,7 +385,6 @@ impl QueryCurve {
                 }
                 continue;
             }
-            let best = g.iter().fold(g[0], |b, r| if r.2 < b.2 { *r } else { b });
             let point = at(best.0);
             let contact = if transversal {
                 if self.at_an_end(other, &point, tolerance) {
