@@ -79,11 +79,13 @@ pub fn cubic_spline_slopes_into(
     end: CubicSplineEnd<'_>,
     slopes: &mut [f64],
 ) -> Result<()> {
-    slopes_with_scratch(x, y, dim, [start, end], slopes, None)
+    slopes_with_scratch(x, y, dim, [start, end], slopes, None).map(|_| ())
 }
 
 /// [`cubic_spline_slopes_into`] with `scratch` (at least `n` numbers, else allocated) for the
-/// solve's pivots.
+/// solve's pivots; with at least `4(n − 1)` numbers and one column, the system's secants
+/// `δ_i` are kept in `scratch[2(n − 1)..3(n − 1)]` where the answer is `true` (not for two
+/// or three points or periodic data).
 fn slopes_with_scratch(
     x: &[f64],
     y: &[f64],
@@ -91,7 +93,7 @@ fn slopes_with_scratch(
     [start, end]: [CubicSplineEnd<'_>; 2],
     slopes: &mut [f64],
     scratch: Option<&mut [f64]>,
-) -> Result<()> {
+) -> Result<bool> {
     check_data(x, y, dim, [start, end], slopes.len())?;
     let n = x.len();
     let periodic = match (start, end) {
@@ -116,7 +118,7 @@ fn slopes_with_scratch(
             slopes[j] = end_slope(start, j, chord);
             slopes[dim + j] = end_slope(end, j, chord);
         }
-        return two_point_system(x, y, dim, start, end, slopes);
+        return two_point_system(x, y, dim, start, end, slopes).map(|()| false);
     }
     if n == 3 && periodic {
         for j in 0..dim {
@@ -126,33 +128,40 @@ fn slopes_with_scratch(
                 slopes[i * dim + j] = t;
             }
         }
-        return Ok(());
+        return Ok(false);
     }
     if n == 3 && start == CubicSplineEnd::NotAKnot && end == CubicSplineEnd::NotAKnot {
-        return parabola_slopes(x, y, dim, slopes);
+        return parabola_slopes(x, y, dim, slopes).map(|()| false);
     }
     if periodic {
-        return periodic_slopes(x, y, dim, slopes);
+        return periodic_slopes(x, y, dim, slopes).map(|()| false);
     }
     let rows = SplineRows::new(x, start, end);
-    rows.right_hand_side(y, dim, start, end, slopes);
     let mut own = Vec::new();
-    let recip = match scratch {
-        Some(s) if s.len() >= n => &mut s[..n],
+    // the pivots' reciprocals in the scratch's first n numbers, the secants of one column in
+    // its third quarter (n ≤ 2(n − 1) from n = 2)
+    let (recip, secants) = match scratch {
+        Some(s) if s.len() >= 4 * (n - 1) => {
+            let (a, b) = s.split_at_mut(2 * (n - 1));
+            (&mut a[..n], Some(&mut b[..n - 1]))
+        }
+        Some(s) if s.len() >= n => (&mut s[..n], None),
         _ => {
             own.resize(n, 0.0);
-            &mut own[..]
+            (&mut own[..], None)
         }
     };
+    let kept = dim == 1 && secants.is_some();
+    rows.right_hand_side(y, dim, [start, end], slopes, secants);
     if dim == 1 {
         // one column: eliminated from both ends at once (two dependent chains of half the
         // length); a pivot that is not positive leaves partial work, formed again below
         if solve_twisted(&rows, slopes, recip) {
-            return Ok(());
+            return Ok(kept);
         }
-        rows.right_hand_side(y, dim, start, end, slopes);
+        rows.right_hand_side(y, dim, [start, end], slopes, None);
     } else if solve_unpivoted(&rows, slopes, dim, recip) {
-        return Ok(());
+        return Ok(false);
     }
     // a pivot that is not positive (not on strictly increasing breakpoints): the stored bands,
     // eliminated with LAPACK's row swaps
@@ -165,7 +174,8 @@ fn slopes_with_scratch(
         },
         slopes,
         dim,
-    )
+    )?;
+    Ok(kept)
 }
 
 /// SciPy's `CubicSpline` matrix on `n ≥ 3` breakpoints with ends that are not periodic, its
@@ -199,21 +209,35 @@ impl<'a> SplineRows<'a> {
     }
 
     /// SciPy's right-hand side into `b` (`n` rows of `dim`): `3(h_i δ_{i−1} + h_{i−1} δ_i)`
-    /// inside, with the secants `δ_i = (y_{i+1} − y_i)/h_i` formed where they are used, and the
+    /// inside, with the secants `δ_i = (y_{i+1} − y_i)/h_i` formed where they are used (one
+    /// column with `secants`, at least `n − 1` numbers: each formed once, kept there), and the
     /// end conditions' rows.
     fn right_hand_side(
         &self,
         y: &[f64],
         dim: usize,
-        start: CubicSplineEnd<'_>,
-        end: CubicSplineEnd<'_>,
+        [start, end]: [CubicSplineEnd<'_>; 2],
         b: &mut [f64],
+        secants: Option<&mut [f64]>,
     ) {
         let x = self.x;
         let n = x.len();
         let h = |i: usize| x[i + 1] - x[i];
         let secant = |i: usize, j: usize| (y[(i + 1) * dim + j] - y[i * dim + j]) / h(i);
-        if dim == 1 {
+        if let (1, Some(sec)) = (dim, secants) {
+            // each secant divided once (a division is the costliest operation of the pass),
+            // the same operations as below
+            let p = n - 1;
+            let (sec, xs, ys) = (&mut sec[..p], &x[..=p], &y[..=p]);
+            for i in 0..p {
+                sec[i] = (ys[i + 1] - ys[i]) / (xs[i + 1] - xs[i]);
+            }
+            let inner = &mut b[1..p];
+            for (k, v) in inner.iter_mut().enumerate() {
+                let (h0, h1) = (xs[k + 1] - xs[k], xs[k + 2] - xs[k + 1]);
+                *v = 3.0 * (h1 * sec[k] + h0 * sec[k + 1]);
+            }
+        } else if dim == 1 {
             let inner = b[1..n - 1].iter_mut().zip(x.windows(3)).zip(y.windows(3));
             for ((b, xw), yw) in inner {
                 let (h0, h1) = (xw[1] - xw[0], xw[2] - xw[1]);
@@ -395,9 +419,51 @@ pub fn cubic_spline_power_into(
         });
     };
     let mut slopes = vec![0.0; rows];
-    // `c` is written over by the power form: it holds the solve's pivots until then
-    slopes_with_scratch(x, y, dim, [start, end], &mut slopes, Some(c))?;
+    // `c` is written over by the power form: it holds the solve's pivots and the secants
+    // until then
+    let c_len = c.len();
+    let scratch = (c_len == 4 * (x.len().saturating_sub(1)) * dim).then_some(&mut *c);
+    let kept = slopes_with_scratch(x, y, dim, [start, end], &mut slopes, scratch)?;
+    if kept && spline_power_pass(x, y, &slopes, c) {
+        return Ok(());
+    }
+    // SciPy's Hermite pass, which names a slope that is not finite
     cubic_hermite_power_into(x, y, &slopes, dim, c)
+}
+
+/// The pieces of one column in SciPy's power form (`c`: 4 rows of `n − 1`) from the slopes
+/// `s` and the secants `δ_i` that [`slopes_with_scratch`] left in `c`'s third row, as
+/// [`crate::pp::cubic_hermite_power_into`] with the reciprocal `r = 1/h` of each step instead
+/// of three divisions by it: `t = (s_i + s_{i+1} − 2δ_i)·r`, `c_0 = t·r`,
+/// `c_1 = (δ_i − s_i)·r − t`, `c_2 = s_i`, `c_3 = y_i` (the secant itself SciPy's quotient).
+/// The slopes are SciPy's to rounding only (the solve's), so its bits are not to keep here,
+/// and a division costs several multiplications. `false` when a slope is not finite.
+#[inline(always)]
+fn spline_power_body(x: &[f64], y: &[f64], s: &[f64], c: &mut [f64]) -> bool {
+    let p = x.len() - 1;
+    let (c0, rest) = c.split_at_mut(p);
+    let (c1, rest) = rest.split_at_mut(p);
+    let (c2, c3) = rest.split_at_mut(p);
+    let (xs, ys, ss) = (&x[..=p], &y[..=p], &s[..=p]);
+    let (c1, c2, c3) = (&mut c1[..p], &mut c2[..p], &mut c3[..p]);
+    let mut bad = 0_u64;
+    for i in 0..p {
+        let r = 1.0 / (xs[i + 1] - xs[i]);
+        let (slope, d0, d1) = (c2[i], ss[i], ss[i + 1]);
+        let t = (d0 + d1 - 2.0 * slope) * r;
+        c0[i] = t * r;
+        c1[i] = (slope - d0) * r - t;
+        c2[i] = d0;
+        c3[i] = ys[i];
+        bad |= u64::from(!d0.is_finite());
+    }
+    bad == 0 && ss[p].is_finite()
+}
+
+crate::numeric::isa::avx2_dispatch! {
+    /// [`spline_power_body`] compiled with AVX2 where the processor has it, else as built
+    /// ([`crate::numeric::isa`]: the same bits).
+    fn spline_power_pass(x: &[f64], y: &[f64], s: &[f64], c: &mut [f64]) -> bool = spline_power_body;
 }
 
 /// The checks of [`cubic_spline_slopes_into`]'s arguments, before anything is allocated.

@@ -56,6 +56,12 @@ impl Sweep {
     }
 }
 
+/// Whether the reciprocal `r` of a pivot is in (0, ∞) (not NaN), with no branch.
+#[inline(always)]
+fn positive(r: f64) -> bool {
+    (r > 0.0) & (r < f64::INFINITY)
+}
+
 /// Solves `A·x = b` in place (one column, `n ≥ 2` rows) by the twisted elimination (module
 /// docs) when every pivot of both halves is positive and finite, and returns `true`; returns
 /// `false` otherwise, with `b` overwritten by partial work (the caller forms it again and
@@ -101,9 +107,9 @@ pub(crate) fn solve_twisted(m: &impl Bands, b: &mut [f64], recip: &mut [f64]) ->
     // (p_k − u_k l_k / s_{k+1})·x_k = y_k − (u_k / s_{k+1})·z_{k+1}
     let pivot = 1.0 / down.recip - (u * l) * up.recip;
     // every pivot in (0, ∞): its reciprocal in (0, ∞), NaN failing both (checked in one
-    // vectorised pass after the chains, not on them)
-    let positive = |r: &f64| *r > 0.0 && *r < f64::INFINITY;
-    if !(recip.iter().all(positive) && positive(&pivot)) {
+    // vectorised pass after the chains, not on them: a count, without the early exit of
+    // `all`, whose branch a number kept the pass from being vectorised)
+    if !positive(pivot) || recip.iter().filter(|&&r| !positive(r)).count() != 0 {
         return false;
     }
     let mut above = (down.value - (u * up.recip) * up.value) / pivot;
