@@ -259,9 +259,15 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 
 /// `n / |n|`, or `None` for a zero or non-finite `n`.
 fn unit(n: [f64; 3]) -> Option<[f64; 3]> {
+    // directly when |n|² is a normal number (a unit normal as given stays as it is), else
     // scaled first, so that neither tiny nor huge components over- or underflow the length
     if !n.iter().all(|x| x.is_finite()) {
         return None;
+    }
+    let l2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    if l2.is_normal() && l2.is_finite() {
+        let l = l2.sqrt();
+        return Some(n.map(|x| x / l));
     }
     let m = n[0].abs().max(n[1].abs()).max(n[2].abs());
     if m == 0.0 {
@@ -838,8 +844,7 @@ pub(crate) mod tests {
             Some([f64::NAN, 0.0, 1.0]),
         ]);
         // vertex 0 of both: (0, 0, 4) + (2, 0, 0) over its length
-        let w = 1.0 / 20f64.sqrt();
-        assert_eq!(n[0], Some([2.0 * w, 0.0, 4.0 * w]));
+        assert_eq!(n[0], Some([2.0, 0.0, 4.0].map(|x| x / 20f64.sqrt())));
         assert_eq!(n[1], Some([0.0, 0.6, 0.8]), "tiny but not zero");
         assert_eq!(n[2], n[0], "not finite: averaged as vertex 0, of both too");
         assert_eq!(
