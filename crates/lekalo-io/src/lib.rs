@@ -74,7 +74,7 @@ pub use intersections::{
 };
 pub use json_write::write_blend_nurbs_json;
 pub use layout::{text_extent, text_width};
-pub use mesh_files::{mesh_text, polyline_text, MeshFormat};
+pub use mesh_files::{mesh_text, mesh_text_with_normals, polyline_text, MeshFormat};
 pub use npy::{npy_bytes, read_npy_array, read_npy_file, read_npy_points};
 pub use npz::{curve_to_npz, read_npz_curve, write_npz_curve};
 pub use numfmt::fmt_number;

@@ -258,8 +258,13 @@ fn read_cad<R: Send>(
 }
 
 /// Reads a STEP file: ``{"shapes": [...], "skipped": [...], "length_unit": str, "schema":
-/// str | None}``, and with ``faces=True`` also ``"faces"`` (a list of ``Face``) and
-/// ``"skipped_faces"``. Skipped entries are dicts ``{"id", "entity", "reason"}``: the first
+/// str | None}``, and with ``faces=True`` also ``"faces"`` (a list of ``Face``),
+/// ``"tessellated"`` (the faces of triangles of AP242, ``TRIANGULATED_FACE``,
+/// ``COMPLEX_TRIANGULATED_FACE`` and the triangulated surface sets, as the file gives them:
+/// dicts ``{"id", "entity", "name", "link", "vertices", "triangles", "normals", "dropped"}``,
+/// ``vertices`` an ``(n, 3)`` float64 array in millimetres, ``triangles`` ``(m, 3)`` int64
+/// 0-based, ``normals`` the ``(n, 3)`` unit normals of the vertices from the file's or
+/// ``None``) and ``"skipped_faces"``. Skipped entries are dicts ``{"id", "entity", "reason"}``: the first
 /// ``skipped_listed`` by id (default 1000; ``None`` keeps every one); ``"skipped_total"`` counts
 /// them all and ``"skipped_kinds"`` counts them by type and reason (dicts ``{"entity",
 /// "reason", "count", "first_id"}``, the most frequent first); with ``faces=True`` likewise
@@ -294,6 +299,9 @@ pub(crate) fn read_step<'py>(
         r.faces,
         &r.skipped_faces,
     )?;
+    if faces {
+        out.set_item("tessellated", tessellated(py, &r.triangulations)?)?;
+    }
     out.set_item("schema", r.schema)?;
     Ok(out)
 }
@@ -301,8 +309,8 @@ pub(crate) fn read_step<'py>(
 /// Reads an IGES file: ``{"shapes": [...], "skipped": [...], "length_unit": str,
 /// "scale_to_mm": float}``, and with ``faces=True`` also ``"faces"`` (the trimmed and bounded
 /// surfaces, entities 144 and 143, and the independent surfaces nothing trims, untrimmed, as
-/// ``Face``) and ``"skipped_faces"``; as ``read_step``
-/// otherwise (ids are directory-entry sequence numbers).
+/// ``Face``), ``"tessellated"`` (empty: IGES has no faces of triangles) and
+/// ``"skipped_faces"``; as ``read_step`` otherwise (ids are directory-entry sequence numbers).
 #[pyfunction]
 #[pyo3(signature = (path, *, faces = false, max_size = IntArg::of(10_000_000), skipped_listed = Some(IntArg::of(1000)), max_input_bytes = IntArg::of(1 << 30)), text_signature = "(path, *, faces=False, max_size=10000000, skipped_listed=1000, max_input_bytes=1073741824)")]
 pub(crate) fn read_iges<'py>(
@@ -329,8 +337,60 @@ pub(crate) fn read_iges<'py>(
         r.faces,
         &r.skipped_faces,
     )?;
+    if faces {
+        // IGES has no faces of triangles: the same keys as read_step's
+        out.set_item("tessellated", PyList::empty(py))?;
+    }
     out.set_item("scale_to_mm", r.scale_to_mm)?;
     Ok(out)
+}
+
+/// The faces of triangles of a STEP file as dicts of NumPy arrays (`read_step`'s
+/// ``"tessellated"``, the word of ``lekalo info --faces --json``): ``id``, ``entity``,
+/// ``name``, ``link`` (the id of the surface or face approximated, or ``None``), ``vertices``
+/// (``(n, 3)`` float64, millimetres), ``triangles`` (``(m, 3)`` int64, 0-based, each turning
+/// counter-clockwise about the side the normals point to), ``normals`` (``(n, 3)`` float64
+/// unit normals of the vertices from the file's, as ``lekalo mesh`` writes them in OBJ
+/// (`lekalo_io::StepTriangulation::vertex_normals`), or ``None`` when the file gives none),
+/// ``dropped`` (triangles of no area left out).
+fn tessellated<'py>(
+    py: Python<'py>,
+    list: &[lekalo_io::StepTriangulation],
+) -> PyResult<Bound<'py, PyList>> {
+    let items = list
+        .iter()
+        .map(|t| {
+            let d = PyDict::new(py);
+            d.set_item("id", t.id)?;
+            d.set_item("entity", &t.entity)?;
+            d.set_item("name", &t.name)?;
+            d.set_item("link", t.link)?;
+            let n = t.vertices.len();
+            d.set_item(
+                "vertices",
+                array(py, t.vertices.as_slice().to_vec(), &[n, 3])?,
+            )?;
+            let m = t.triangles.len();
+            let tri: Vec<i64> = t
+                .triangles
+                .iter()
+                .flatten()
+                .map(|&k| i64::from(k))
+                .collect();
+            d.set_item("triangles", PyArray1::from_vec(py, tri).reshape([m, 3])?)?;
+            let normals = t.vertex_normals();
+            if normals.is_empty() {
+                d.set_item("normals", py.None())?;
+            } else {
+                // a vertex of no triangle with a zero normal in the file has none: (0, 0, 0)
+                let flat: Vec<f64> = normals.iter().flat_map(|v| v.unwrap_or([0.0; 3])).collect();
+                d.set_item("normals", array(py, flat, &[n, 3])?)?;
+            }
+            d.set_item("dropped", t.dropped)?;
+            Ok(d)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    PyList::new(py, items)
 }
 
 /// How many skipped entities a read lists: `skipped_listed`, every one for `None`.

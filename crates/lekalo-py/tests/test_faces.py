@@ -295,6 +295,53 @@ def test_iges_trimmed_surfaces_read_as_faces():
         assert np.allclose(f.surface(u, v), curve(t), atol=1e-12)
     inside = f.contains(np.array([0.1, 0.5, 0.9]), np.array([0.1, 0.5, 0.2]))
     assert list(inside) == [True, False, True]
+    assert r["tessellated"] == [], "IGES has no faces of triangles"
+
+
+# AP242 faces of triangles in inches: a planar face with one normal (not of unit length), a
+# strip through pnindex with a normal per point (one zero), a set without normals
+TRIANGLES = """
+#90=( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );
+#91=LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(25.4),#90);
+#92=( CONVERSION_BASED_UNIT('INCH',#91) LENGTH_UNIT() NAMED_UNIT(*) );
+#93=( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#92)) REPRESENTATION_CONTEXT('',''));
+#1=COORDINATES_LIST('',4,((0.,0.,0.),(1.,0.,0.),(1.,1.,0.),(0.,1.,0.)));
+#2=TRIANGULATED_FACE('square',#1,4,((0.,0.,2.)),$,(),((1,2,3),(1,3,4)));
+#3=COORDINATES_LIST('',6,((9.,9.,9.),(1.,0.,0.),(2.,0.,0.),(1.,1.,0.),(2.,1.,0.),(9.,9.,9.)));
+#4=COMPLEX_TRIANGULATED_FACE('',#3,4,((0.,0.,1.),(0.,0.6,0.8),(0.,0.,0.),(0.,0.,3.)),$,(2,3,4,5),((1,2,3,4)),());
+#5=TRIANGULATED_SURFACE_SET('set',#1,4,(),(),((1,2,3)));
+"""
+
+
+def test_faces_of_triangles_are_read_as_arrays(tmp_path):
+    path = write(tmp_path, "tri.stp", TRIANGLES)
+    r = lekalo.read_step(path, faces=True)
+    assert r["faces"] == [] and r["skipped_faces"] == []
+    assert "tessellated" not in lekalo.read_step(path)
+    square, strip, surface_set = r["tessellated"]
+    assert (square["id"], square["entity"], square["name"], square["link"]) == (2, "TRIANGULATED_FACE", "square", None)
+    assert (strip["entity"], surface_set["name"]) == ("COMPLEX_TRIANGULATED_FACE", "set")
+    # points in millimetres, (n, 3) float64; pnindex followed (not the list's 6 points)
+    v = strip["vertices"]
+    assert v.dtype == np.float64 and v.shape == (4, 3)
+    assert np.array_equal(v, 25.4 * np.array([[1.0, 0, 0], [2, 0, 0], [1, 1, 0], [2, 1, 0]]))
+    # triangles (m, 3) int64, 0-based; the strip's second turned as the first
+    t = strip["triangles"]
+    assert t.dtype == np.int64 and t.tolist() == [[0, 1, 2], [2, 1, 3]]
+    assert square["triangles"].tolist() == [[0, 1, 2], [0, 2, 3]]
+    # unit normals per vertex: the planar face's one at each point, a zero one its triangles'
+    assert np.allclose(square["normals"], np.tile([0.0, 0.0, 1.0], (4, 1)), rtol=0, atol=1e-15)
+    n = strip["normals"]
+    assert n.shape == (4, 3)
+    assert np.allclose(n, [[0, 0, 1], [0, 0.6, 0.8], [0, 0, 1], [0, 0, 1]], rtol=0, atol=1e-15)
+    assert surface_set["normals"] is None
+    # every triangle turns about its vertices' normals
+    for face in (square, strip):
+        p, tri = face["vertices"], face["triangles"]
+        turn = np.cross(p[tri[:, 1]] - p[tri[:, 0]], p[tri[:, 2]] - p[tri[:, 0]])
+        for k in range(3):
+            assert np.all(np.einsum("ij,ij->i", turn, face["normals"][tri[:, k]]) > 0)
+    assert strip["dropped"] == 0
 
 
 def test_mesh_of_the_plate_leaves_the_hole_out(tmp_path):

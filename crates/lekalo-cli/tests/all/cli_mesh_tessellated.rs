@@ -41,7 +41,9 @@ fn read_obj(text: &str) -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
         let w: Vec<&str> = l.split_whitespace().collect();
         match w.first() {
             Some(&"v") => v.push([1, 2, 3].map(|k| w[k].parse::<f64>().unwrap())),
-            Some(&"f") => f.push([1, 2, 3].map(|k| w[k].parse::<usize>().unwrap() - 1)),
+            Some(&"f") => f.push(
+                [1, 2, 3].map(|k| w[k].split('/').next().unwrap().parse::<usize>().unwrap() - 1),
+            ),
             _ => {}
         }
     }

@@ -22,6 +22,7 @@ mod cli_intersect_surfaces;
 mod cli_json;
 mod cli_knot_cad;
 mod cli_mesh_faces;
+mod cli_mesh_normals;
 mod cli_mesh_tessellated;
 mod cli_npy;
 mod cli_parquet;

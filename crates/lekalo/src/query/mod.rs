@@ -15,7 +15,7 @@
 //! | `project.rs` | closest points on curves and surfaces, all minima on request, parallel batches, point inversion |
 //! | `intersect/` | curve–curve (planar: sweep, Bezier clipping, Newton), self-intersection, curve–plane, curve–surface and surface–surface intersections, plane sections |
 //! | `offset.rs` | offsets of planar curves, with cusps and loops detected and trimmed |
-//! | `tessellate.rs` | polylines within a proved deviation; the mesh type |
+//! | `tessellate.rs` | polylines within a proved deviation; the mesh type, its facet normals and its vertices' normals (the surface's, or its triangles' averaged) |
 //! | `mesh/` | adaptive, crack-free triangle meshes of surfaces within a proved deviation |
 //! | `curvature.rs` | curvature and torsion, inflections and curvature extrema; surface curvatures |
 //! | `bbox.rs` | exact bounding boxes from the pieces' extrema |
@@ -52,6 +52,6 @@ pub use project::{CurveProjection, SurfaceProjection, MAX_QUERY_RANGE};
 pub use surface::QuerySurface;
 pub(crate) use tessellate::{check_deviation, check_tol, TESSELLATION_TOLERANCE};
 pub use tessellate::{
-    Mesh, Polyline, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES, MAX_POLYLINE_POINTS,
+    Mesh, Polyline, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES, MAX_POLYLINE_POINTS, MESH_NORMAL_RTOL,
     MIN_RELATIVE_TOLERANCE,
 };

@@ -94,6 +94,188 @@ impl Mesh {
         let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
         (l > 0.0 && l.is_finite()).then(|| [n[0] / l, n[1] / l, n[2] / l])
     }
+
+    /// Unit normals at the vertices, one per vertex: `given[k]` scaled to unit length where it
+    /// is finite and not zero; elsewhere (and for a vertex past `given`) the area-weighted
+    /// average of the normals of the triangles that use the vertex, `Σ (b − a) × (c − a)`
+    /// normalised (the vertex normal of Gouraud shading with weights the triangles' areas; Max,
+    /// "Weights for computing vertex normals from facet normals", J. Graphics Tools 4, 1999),
+    /// which turns as the triangles do; `None` where that sum is zero too (a vertex of no
+    /// triangle, or only of triangles of no area). Never a non-finite value.
+    ///
+    /// ```
+    /// use lekalo::query::Mesh;
+    /// use lekalo::Points;
+    /// let m = Mesh {
+    ///     vertices: Points::from_3d(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])?,
+    ///     uv: vec![[0.0, 0.0]; 3],
+    ///     triangles: vec![[0, 1, 2]],
+    ///     deviation: 0.0,
+    /// };
+    /// let n = m.vertex_normals(&[Some([0.0, 0.0, 2.0]), Some([0.0; 3])]);
+    /// assert_eq!(n, vec![Some([0.0, 0.0, 1.0]); 3]);
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    #[must_use]
+    pub fn vertex_normals(&self, given: &[Option<[f64; 3]>]) -> Vec<Option<[f64; 3]>> {
+        let n = self.vertices.len();
+        let mut out: Vec<Option<[f64; 3]>> = (0..n)
+            .map(|k| given.get(k).copied().flatten().and_then(unit))
+            .collect();
+        if self.vertices.dim() != 3 || out.iter().all(Option::is_some) {
+            return out;
+        }
+        let mut sum = vec![[0.0_f64; 3]; n];
+        for t in &self.triangles {
+            let t = t.map(|k| k as usize);
+            if t.iter().any(|&k| k >= n) {
+                continue;
+            }
+            let p = |k: usize| self.vertices.point(k);
+            let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
+            let c = cross(
+                [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+                [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
+            );
+            for k in t {
+                let s = &mut sum[k];
+                for d in 0..3 {
+                    s[d] += c[d];
+                }
+            }
+        }
+        for (o, s) in out.iter_mut().zip(sum) {
+            if o.is_none() {
+                *o = unit(s);
+            }
+        }
+        out
+    }
+
+    /// Unit normals at the vertices of a mesh of `surface` (its `uv` the vertices'
+    /// parameters): the surface's `S_u × S_v / |S_u × S_v|` at each vertex's `(u, v)` (clamped
+    /// to the domain; P&T A3.6, A4.4 for the derivatives), reversed where `same_sense` is false
+    /// (a face whose normal is not its surface's, ISO 10303-42 `advanced_face.same_sense`), so
+    /// that they point to the side the triangles of [`crate::topology::mesh_faces`] and
+    /// [`QuerySurface::mesh`] turn about.
+    ///
+    /// Where the normal is undefined, a pole or a collapsed edge (`|S_u × S_v|` at most
+    /// [`MESH_NORMAL_RTOL`] times `max |S_u| · max |S_v|` over the mesh's vertices: at a pole
+    /// of a rational surface `S_u` is not zero but rounding, whose cross product points
+    /// anywhere), the vertex takes the mean of the surface's unit normals at the `(u, v)`
+    /// centres of its triangles (off the pole: a triangle with two vertices on a pole has no
+    /// area in space, but its centre is inside the patch), and where these are undefined too
+    /// the area-weighted average of its triangles' normals as [`Mesh::vertex_normals`] does;
+    /// `None` where that is zero too. All `None` for a surface
+    /// that is not 3-D or a mesh whose `uv` does not hold a pair per vertex.
+    #[must_use]
+    pub fn surface_normals(
+        &self,
+        surface: &crate::Surface,
+        same_sense: bool,
+    ) -> Vec<Option<[f64; 3]>> {
+        if surface.dim() != 3 || self.uv.len() != self.vertices.len() {
+            return vec![None; self.vertices.len()];
+        }
+        let ((u0, u1), (v0, v1)) = surface.domain();
+        let sign = if same_sense { 1.0 } else { -1.0 };
+        let len = |a: &[f64]| a.iter().map(|x| x * x).sum::<f64>().sqrt();
+        // S_u × S_v at each vertex, and the largest |S_u| and |S_v|
+        let (mut su_max, mut sv_max) = (0.0_f64, 0.0_f64);
+        let crosses: Vec<Option<[f64; 3]>> = self
+            .uv
+            .iter()
+            .map(|&[u, v]| {
+                let d = surface
+                    .eval_derivatives(u.clamp(u0, u1), v.clamp(v0, v1), 1)
+                    .ok()?;
+                let (su, sv) = (d.point(2), d.point(1));
+                su_max = su_max.max(len(su));
+                sv_max = sv_max.max(len(sv));
+                Some(cross([su[0], su[1], su[2]], [sv[0], sv[1], sv[2]]))
+            })
+            .collect();
+        let floor = MESH_NORMAL_RTOL * su_max * sv_max;
+        let normal_at = |u: f64, v: f64| -> Option<[f64; 3]> {
+            let d = surface
+                .eval_derivatives(u.clamp(u0, u1), v.clamp(v0, v1), 1)
+                .ok()?;
+            let (su, sv) = (d.point(2), d.point(1));
+            let c = cross([su[0], su[1], su[2]], [sv[0], sv[1], sv[2]]);
+            (len(&c) > floor).then(|| c.map(|x| sign * x))
+        };
+        let mut given: Vec<Option<[f64; 3]>> = crosses
+            .into_iter()
+            .map(|c| {
+                let c = c?;
+                (len(&c) > floor).then(|| c.map(|x| sign * x))
+            })
+            .collect();
+        // a degenerate vertex: the mean of the unit normals at the (u, v) centres of its
+        // triangles, inside the patch where the normal is defined (a pole's triangles have
+        // two vertices on the pole, no area in space, but their centres are off it)
+        if given.iter().any(Option::is_none) {
+            let mut sum = vec![[0.0_f64; 3]; given.len()];
+            for t in &self.triangles {
+                let t = t.map(|k| k as usize);
+                if t.iter().any(|&k| k >= given.len()) || t.iter().all(|&k| given[k].is_some()) {
+                    continue;
+                }
+                let c = t.map(|k| self.uv[k]);
+                let centre = |d: usize| (c[0][d] + c[1][d] + c[2][d]) / 3.0;
+                let Some(n) = normal_at(centre(0), centre(1)).and_then(unit) else {
+                    continue;
+                };
+                for k in t {
+                    for d in 0..3 {
+                        sum[k][d] += n[d];
+                    }
+                }
+            }
+            for (g, s) in given.iter_mut().zip(sum) {
+                if g.is_none() {
+                    *g = unit(s);
+                }
+            }
+        }
+        self.vertex_normals(&given)
+    }
+}
+
+/// The relative size of `|S_u × S_v|`, against the largest `|S_u| · |S_v|` of a mesh, below
+/// which [`Mesh::surface_normals`] takes a vertex's normal from its triangles: rounding
+/// leaves derivatives of about `1e-15` of their size at a pole, whose direction is then
+/// noise; a normal accepted above `1e-8` is off by at most about `1e-7` radians.
+pub const MESH_NORMAL_RTOL: f64 = 1e-8;
+
+/// `a × b`.
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// `n / |n|`, or `None` for a zero or non-finite `n`.
+fn unit(n: [f64; 3]) -> Option<[f64; 3]> {
+    // directly when |n|² is a normal number (a unit normal as given stays as it is), else
+    // scaled first, so that neither tiny nor huge components over- or underflow the length
+    if !n.iter().all(|x| x.is_finite()) {
+        return None;
+    }
+    let l2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    if l2.is_normal() && l2.is_finite() {
+        let l = l2.sqrt();
+        return Some(n.map(|x| x / l));
+    }
+    let m = n[0].abs().max(n[1].abs()).max(n[2].abs());
+    if m == 0.0 {
+        return None;
+    }
+    let s = n.map(|x| x / m);
+    let l = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
+    Some(s.map(|x| x / l))
 }
 
 /// [`Error::ToleranceNotMet`] for the mesh of `what` when its proved deviation bound is above
@@ -572,5 +754,104 @@ pub(crate) mod tests {
             let r = p.iter().map(|x| x * x).sum::<f64>().sqrt();
             assert!((r - 1.0).abs() < 1e-14, "vertex at radius {r}");
         }
+    }
+
+    /// The dot product of `a` and `b`.
+    fn dot(a: [f64; 3], b: &[f64]) -> f64 {
+        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    }
+
+    /// The normals of a mesh of an eighth of a sphere, its north pole among its vertices: at
+    /// every vertex but the pole the sphere's exact normal (the vertex over the radius, outward
+    /// or inward as `S_u × S_v` points), at the pole (where `S_u` is rounding, whose cross
+    /// product with `S_v` points anywhere) the average of its triangles' normals, near the
+    /// axis; each unit, finite, and on the side every triangle turns about;
+    /// reversed for a face whose sense is not its surface's.
+    #[test]
+    fn vertex_normals_are_the_surface_s_and_averaged_at_a_pole() {
+        use crate::surface::Placement;
+        use crate::{NurbsSurface, Surface};
+        use std::f64::consts::FRAC_PI_2;
+        let frame = Placement::new([0.0; 3], None, None).unwrap();
+        let s = NurbsSurface::sphere(&frame, 1.0, (0.0, FRAC_PI_2), (0.0, FRAC_PI_2)).unwrap();
+        let surface = Surface::Nurbs(s);
+        let m = surface.to_query().unwrap().mesh(1e-3).unwrap();
+        let normals = m.surface_normals(&surface, true);
+        assert_eq!(normals.len(), m.vertices.len());
+        let mut poles = 0;
+        let mut outward = 0;
+        for (k, n) in normals.iter().enumerate() {
+            let n = n.expect("every vertex has a normal");
+            assert!(n.iter().all(|x| x.is_finite()), "{n:?}");
+            assert!((dot(n, &n) - 1.0).abs() < 1e-14, "unit: {n:?}");
+            let p = m.vertices.point(k);
+            if p[2] > 1.0 - 1e-12 {
+                poles += 1;
+                // the triangles round the pole lean by less than their size
+                assert!(n[2].abs() > 0.9, "the pole's averaged normal {n:?}");
+                continue;
+            }
+            // the sphere's normal at p is ±p
+            let d = dot(n, p);
+            assert!((d.abs() - 1.0).abs() < 1e-12, "{n:?} at {p:?}");
+            outward += usize::from(d > 0.0);
+        }
+        assert!(poles > 0, "the pole is a vertex");
+        assert!(
+            outward == 0 || outward == normals.len() - poles,
+            "one side throughout"
+        );
+        // every triangle turns about the normals at its vertices
+        for (t, tri) in m.triangles.iter().enumerate() {
+            let Some(f) = m.facet_normal(t) else { continue };
+            for &k in tri {
+                let n = normals[k as usize].unwrap();
+                assert!(dot(n, &f) > 0.0, "triangle {t} {f:?} against {n:?}");
+            }
+        }
+        // a face whose normal is not its surface's: the normals reversed
+        let reversed = m.surface_normals(&surface, false);
+        for (k, (a, b)) in normals.iter().zip(&reversed).enumerate() {
+            let (a, b) = (a.unwrap(), b.unwrap());
+            if m.vertices.point(k)[2] <= 1.0 - 1e-12 {
+                assert_eq!(a.map(|x| -x), b);
+            }
+        }
+    }
+
+    /// Given normals are made unit; a zero or non-finite one, or a vertex past them, takes
+    /// the average of its triangles' normals weighted by their areas; a vertex of no triangle
+    /// has none.
+    #[test]
+    fn given_normals_are_made_unit_and_missing_ones_averaged() {
+        let m = Mesh {
+            vertices: Points::from_3d(&[
+                [0.0, 0.0, 0.0],
+                [2.0, 0.0, 0.0],
+                [0.0, 2.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [9.0, 9.0, 9.0],
+            ])
+            .unwrap(),
+            uv: vec![[0.0, 0.0]; 5],
+            // in the plane z = 0 (area 2, normal +z) and in x = 0 (area 1, normal +x)
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+            deviation: 0.0,
+        };
+        let n = m.vertex_normals(&[
+            Some([0.0; 3]),
+            Some([0.0, 3e-300, 4e-300]),
+            Some([f64::NAN, 0.0, 1.0]),
+        ]);
+        // vertex 0 of both: (0, 0, 4) + (2, 0, 0) over its length
+        assert_eq!(n[0], Some([2.0, 0.0, 4.0].map(|x| x / 20f64.sqrt())));
+        assert_eq!(n[1], Some([0.0, 0.6, 0.8]), "tiny but not zero");
+        assert_eq!(n[2], n[0], "not finite: averaged as vertex 0, of both too");
+        assert_eq!(
+            n[3],
+            Some([1.0, 0.0, 0.0]),
+            "past the given: its triangle's"
+        );
+        assert_eq!(n[4], None, "of no triangle");
     }
 }

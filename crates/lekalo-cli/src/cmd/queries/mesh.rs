@@ -32,6 +32,12 @@ loops outside the surface's domain, crossing themselves or each other, a hole ou
 outer loop) is listed with the reason and left out. Pcurves past the domain by at most 1e-4 of
 its width are clipped to it, and edges and holes of no length dropped: listed as repaired.
 
+Normals: OBJ writes a unit normal per vertex (`vn`, faces `f v//vn`): on a meshed surface or
+face the surface's exact normal S_u x S_v at the vertex, turned with the face's sense; at a
+pole, where it is undefined, the area-weighted average of the vertex's triangles' normals; on
+a face of triangles the normals the file gives (none if it gives none). PLY writes them (nx ny
+nz) when every vertex has one; STL writes each triangle's own normal.
+
 Examples:
   lekalo mesh surface.json --tolerance 1e-3 -o surface.obj
   lekalo mesh faces.jsonl --tolerance 1e-3 -o faces.obj
@@ -167,6 +173,21 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
         // the faces of triangles join as the file gives them: their triangles are the geometry
         let meshed_faces = meshes.len();
         let tessellated_triangles: usize = triangulations.iter().map(|t| t.triangles.len()).sum();
+        // the normals of the vertices, in the order of the joined mesh: a meshed face's its
+        // surface's (turned by its sense), a face of triangles' the file's (none if it gives none)
+        let mut normals: Vec<Option<[f64; 3]>> = Vec::new();
+        for (i, m) in &meshes {
+            let f = &ready[*i].1;
+            normals.extend(m.surface_normals(f.surface(), f.same_sense()));
+        }
+        for t in &triangulations {
+            let n = t.vertex_normals();
+            if n.is_empty() {
+                normals.extend(std::iter::repeat_n(None, t.vertices.len()));
+            } else {
+                normals.extend(n);
+            }
+        }
         let all: Vec<lekalo::query::Mesh> = meshes
             .into_iter()
             .map(|(_, m)| m)
@@ -178,13 +199,16 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
             .collect();
         let m = lekalo::topology::join_meshes(&all).map_err(bad)?;
         drop(all);
+        if normals.iter().all(Option::is_none) {
+            normals.clear();
+        }
         let listed = |l: &[(usize, String)]| -> Vec<serde_json::Value> {
             l.iter()
                 .map(|(k, r)| json!({"id": faces[*k].id, "name": faces[*k].name, "reason": r}))
                 .collect()
         };
         let summary = json!({"faces": meshed_faces, "tessellated": triangulations.len(), "tessellated_triangles": tessellated_triangles, "skipped": skipped.len(), "skipped_faces": listed(&skipped), "above_tolerance": listed(&coarse), "repaired": listed(&repaired), "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
-        write_mesh(a, cx, &m, &fmt, &summary)?;
+        write_mesh(a, cx, &m, &normals, &fmt, &summary)?;
         if let Some((k, _)) = coarse.first() {
             // the joined mesh's deviation is the largest of its faces'
             let worst = m.deviation;
@@ -225,7 +249,8 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
             })
             .map_err(bad)?;
             let summary = json!({"vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
-            return write_mesh(a, cx, &m, &fmt, &summary);
+            let normals = m.surface_normals(&s, true);
+            return write_mesh(a, cx, &m, &normals, &fmt, &summary);
         }
         Shape::Curve(obj) => {
             let q = query_curve(&obj, &a.input)?;
@@ -244,11 +269,13 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
     finish(a, cx, &body, &summary)
 }
 
-/// A triangle mesh in the format asked for, written with its summary.
+/// A triangle mesh in the format asked for, with the normals of its vertices (OBJ `vn`, PLY
+/// `nx ny nz`; none when empty), written with its summary.
 fn write_mesh(
     a: &MeshArgs,
     cx: &Context,
     m: &lekalo::query::Mesh,
+    normals: &[Option<[f64; 3]>],
     fmt: &str,
     summary: &serde_json::Value,
 ) -> Result<()> {
@@ -256,7 +283,7 @@ fn write_mesh(
         Ok(f) => f,
         Err(_) => return bad_input(format!("--format {fmt}: use obj, stl or ply")),
     };
-    let body = match lekalo_io::mesh_text(m, format) {
+    let body = match lekalo_io::mesh_text_with_normals(m, normals, format) {
         Ok(b) => b,
         Err(_) => return bad_input("meshes are written for 3-D surfaces"),
     };

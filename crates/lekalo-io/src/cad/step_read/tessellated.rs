@@ -82,6 +82,22 @@ impl StepTriangulation {
             deviation: 0.0,
         }
     }
+
+    /// The unit normals of the vertices from the file's, for a mesh file's `vn` lines
+    /// ([`crate::mesh_text_with_normals`]): one per vertex, the file's normal of the vertex (or
+    /// of the whole face, for a planar face that gives one) scaled to unit length; a zero
+    /// normal takes the area-weighted average of the normals of its triangles
+    /// ([`lekalo::query::Mesh::vertex_normals`]). Empty when the file gives no normals: the
+    /// triangles' own are the facets'.
+    #[must_use]
+    pub fn vertex_normals(&self) -> Vec<Option<[f64; 3]>> {
+        let given: Vec<Option<[f64; 3]>> = match self.normals.len() {
+            0 => return Vec::new(),
+            1 => vec![Some(self.normals[0]); self.vertices.len()],
+            _ => self.normals.iter().copied().map(Some).collect(),
+        };
+        self.to_mesh().vertex_normals(&given)
+    }
 }
 
 /// The coordinate lists converted to millimetres, by id: one list serves many faces.

@@ -297,3 +297,34 @@ fn the_size_limit_is_checked_before_the_mesh_is_made() {
         "{e}"
     );
 }
+
+/// The normals of the vertices, for mesh files: the file's made unit (a planar face's one for
+/// every vertex), a zero one the average of its triangles' (which turn about +z here), none
+/// when the file gives none.
+#[test]
+fn vertex_normals_are_the_file_s_made_unit() {
+    let r = read(
+        "#10=TRIANGULATED_FACE('',#1,6,((0.,0.,2.),(0.,0.6,0.8),(0.,0.,0.),(0.,0.,1.),(3.,0.,4.),(0.,0.,1.)),$,(),((1,3,2),(2,3,4),(3,5,4),(4,5,6)));",
+    );
+    let n = only(&r).vertex_normals();
+    assert_eq!(n.len(), 6);
+    let near = |k: usize, want: [f64; 3]| {
+        let got = n[k].expect("a normal");
+        assert!(
+            (0..3).all(|d| (got[d] - want[d]).abs() <= 1e-15),
+            "vertex {k}: {got:?} against {want:?}"
+        );
+    };
+    near(0, [0.0, 0.0, 1.0]); // scaled to unit length
+    near(1, [0.0, 0.6, 0.8]); // kept
+    near(2, [0.0, 0.0, 1.0]); // zero: its triangles', all +z
+    near(4, [0.6, 0.0, 0.8]);
+    let r = read("#10=TRIANGULATED_FACE('',#1,6,((0.,0.,-3.)),$,(),((1,2,3),(2,4,3)));");
+    assert_eq!(
+        only(&r).vertex_normals(),
+        vec![Some([0.0, 0.0, -1.0]); 6],
+        "a planar face's one normal at every vertex"
+    );
+    let r = read("#10=TRIANGULATED_FACE('',#1,6,(),$,(),((1,3,2)));");
+    assert!(only(&r).vertex_normals().is_empty(), "none given");
+}
