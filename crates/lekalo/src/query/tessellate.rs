@@ -153,8 +153,9 @@ impl Mesh {
     }
 
     /// Unit normals at the vertices of a mesh of `surface` (its `uv` the vertices'
-    /// parameters): the surface's `S_u × S_v / |S_u × S_v|` at each vertex's `(u, v)` (clamped
-    /// to the domain; P&T A3.6, A4.4 for the derivatives), reversed where `same_sense` is false
+    /// parameters): the surface's `S_u × S_v / |S_u × S_v|` at each vertex's `(u, v)` (brought
+    /// back into the domain by whole widths where the mesher unwrapped a loop across a seam,
+    /// clamped where it lies outside by rounding; P&T A3.6, A4.4 for the derivatives), reversed where `same_sense` is false
     /// (a face whose normal is not its surface's, ISO 10303-42 `advanced_face.same_sense`), so
     /// that they point to the side the triangles of [`crate::topology::mesh_faces`] and
     /// [`QuerySurface::mesh`] turn about.
@@ -178,6 +179,17 @@ impl Mesh {
             return vec![None; self.vertices.len()];
         }
         let ((u0, u1), (v0, v1)) = surface.domain();
+        // a vertex's (u, v) may lie a period beyond the domain, where the mesher unwrapped a
+        // loop across the seam of a closed surface: brought back by whole domain widths (the
+        // period of a closed direction); one outside by rounding only is clamped
+        let into = |x: f64, a: f64, b: f64| {
+            let w = b - a;
+            if x < a - 1e-9 * w || x > b + 1e-9 * w {
+                a + (x - a).rem_euclid(w)
+            } else {
+                x.clamp(a, b)
+            }
+        };
         let sign = if same_sense { 1.0 } else { -1.0 };
         let len = |a: &[f64]| a.iter().map(|x| x * x).sum::<f64>().sqrt();
         // S_u × S_v at each vertex, and the largest |S_u| and |S_v|
@@ -187,7 +199,7 @@ impl Mesh {
             .iter()
             .map(|&[u, v]| {
                 let d = surface
-                    .eval_derivatives(u.clamp(u0, u1), v.clamp(v0, v1), 1)
+                    .eval_derivatives(into(u, u0, u1), into(v, v0, v1), 1)
                     .ok()?;
                 let (su, sv) = (d.point(2), d.point(1));
                 su_max = su_max.max(len(su));
@@ -198,7 +210,7 @@ impl Mesh {
         let floor = MESH_NORMAL_RTOL * su_max * sv_max;
         let normal_at = |u: f64, v: f64| -> Option<[f64; 3]> {
             let d = surface
-                .eval_derivatives(u.clamp(u0, u1), v.clamp(v0, v1), 1)
+                .eval_derivatives(into(u, u0, u1), into(v, v0, v1), 1)
                 .ok()?;
             let (su, sv) = (d.point(2), d.point(1));
             let c = cross([su[0], su[1], su[2]], [sv[0], sv[1], sv[2]]);
