@@ -258,7 +258,7 @@ impl QueryCurve {
         // whether the gap at `t` is within `limit`: first from the foot point near `u` (an upper
         // bound of the gap, so a yes is final), else by the global projection; with the foot's
         // parameter, to start the next one from
-        let scratch = std::cell::RefCell::new(Vec::new());
+        let scratch = std::cell::RefCell::new((Vec::new(), Vec::new()));
         let within = |t: f64, u: f64, limit: f64| -> (bool, f64) {
             let (d, u) = self.near_gap(other, t, u, &mut scratch.borrow_mut());
             if d <= limit {
@@ -440,28 +440,47 @@ impl QueryCurve {
     /// `(B(u) − A(t))·B'(u) = 0` from `u` (at most 6 steps, clamped to `other`'s domain; the
     /// nearest of its iterates). Any point of `other` bounds the gap from above, so a bound within
     /// a limit needs no global projection. Infinite for `t` outside the domain.
-    fn near_gap(&self, other: &QueryCurve, t: f64, u: f64, scratch: &mut Vec<f64>) -> (f64, f64) {
+    fn near_gap(
+        &self,
+        other: &QueryCurve,
+        t: f64,
+        u: f64,
+        bufs: &mut (Vec<f64>, Vec<f64>),
+    ) -> (f64, f64) {
         let (lo, hi) = self.domain();
         let (blo, bhi) = other.domain();
         if !(t >= lo && t <= hi && u.is_finite()) {
             return (f64::INFINITY, u);
         }
-        let p = self.eval_global(t, 0, scratch);
         let n = other.dim;
+        // the point of this curve, then other's point and derivatives, in `buf` (no allocation)
+        let (scratch, buf) = (&mut bufs.0, &mut bufs.1);
+        buf.clear();
+        buf.resize(4 * n.max(self.dim), 0.0);
+        let (p, b) = buf.split_at_mut(n.max(self.dim));
+        let k = self.piece_of(t);
+        self.eval_local(k, self.local(k, t), 0, scratch, b);
+        for d in 0..n {
+            p[d] = self.centre[d] + self.scale * b[d];
+        }
         let mut u = u.clamp(blo, bhi);
         let mut best = (f64::INFINITY, u);
         for _ in 0..6 {
-            let b = other.eval_global(u, 2, scratch);
-            let (pt, d1, d2) = (&b[..n], &b[n..2 * n], &b[2 * n..3 * n]);
-            let d = dist(pt, &p);
+            let k = other.piece_of(u);
+            other.eval_local(k, other.local(k, u), 2, scratch, b);
+            let h = other.spans[k].1 - other.spans[k].0;
+            let (mut f, mut fp, mut sq) = (0.0, 0.0, 0.0);
+            for i in 0..n {
+                let e = other.centre[i] + other.scale * b[i] - p[i];
+                let d1 = other.scale * b[n + i] / h;
+                let d2 = other.scale * b[2 * n + i] / (h * h);
+                sq += e * e;
+                f += e * d1;
+                fp += d1 * d1 + e * d2;
+            }
+            let d = sq.sqrt();
             if d < best.0 {
                 best = (d, u);
-            }
-            let (mut f, mut fp) = (0.0, 0.0);
-            for i in 0..n {
-                let e = pt[i] - p[i];
-                f += e * d1[i];
-                fp += d1[i] * d1[i] + e * d2[i];
             }
             if !(fp > 0.0) {
                 break;
