@@ -255,6 +255,18 @@ impl QueryCurve {
                 ),
             }
         };
+        // whether the gap at `t` is within `limit`: first from the foot point near `u` (an upper
+        // bound of the gap, so a yes is final), else by the global projection; with the foot's
+        // parameter, to start the next one from
+        let scratch = std::cell::RefCell::new((Vec::new(), Vec::new()));
+        let within = |t: f64, u: f64, limit: f64| -> (bool, f64) {
+            let (d, u) = self.near_gap(other, t, u, &mut scratch.borrow_mut());
+            if d <= limit {
+                return (true, u);
+            }
+            let (d, pr) = gap(t);
+            (d <= limit, if d.is_finite() { pr.t } else { u })
+        };
         let at = |t: f64| self.point(t).unwrap_or_default();
         let on_b = |t: f64| other.point(t).unwrap_or_default();
         // the branches: a solution joins the latest group whose last solution is the same
@@ -272,7 +284,7 @@ impl QueryCurve {
                 let (ma, mb) = (at(0.5 * (last.0 + r.0)), on_b(0.5 * (last.1 + r.1)));
                 let step = dist(&at(last.0), &at(r.0)) + dist(&on_b(last.1), &on_b(r.1));
                 dist(&ma, &mb) <= 0.125 * step + tolerance
-                    && gap(0.5 * (last.0 + r.0)).0 <= tolerance
+                    && within(0.5 * (last.0 + r.0), 0.5 * (last.1 + r.1), tolerance).0
             });
             match found {
                 Some(i) => groups[i].push(r),
@@ -289,10 +301,10 @@ impl QueryCurve {
             // stays tiny a little way to either side
             let probe = || {
                 let h = PROBE * (hi - lo);
-                [a0 - h, a1 + h]
+                [(a0 - h, g[0].1), (a1 + h, g[g.len() - 1].1)]
                     .iter()
-                    .filter(|t| **t >= lo && **t <= hi)
-                    .all(|&t| gap(t).0 <= tolerance / 100.0)
+                    .filter(|(t, _)| *t >= lo && *t <= hi)
+                    .all(|&(t, u)| within(t, u, tolerance / 100.0).0)
             };
             let best = g.iter().fold(g[0], |b, r| if r.2 < b.2 { *r } else { b });
             // the stretch about a group of contact solutions where the gap is within the
@@ -304,21 +316,26 @@ impl QueryCurve {
             // hundred projections)
             let short_contact = || {
                 let span = hi - lo;
-                let side = |from: f64, dir: f64| {
+                // each step's foot point starts from the last one's
+                let side = |from: f64, mut u: f64, dir: f64| {
                     let mut h = PROBE * span;
                     while h <= 1e-2 * span {
                         let t = from + dir * h;
                         if t < lo || t > hi {
                             return None;
                         }
-                        if gap(t).0 > tolerance {
-                            return Some(t);
+                        let (ok, v) = within(t, u, tolerance);
+                        if !ok {
+                            return Some((t, v));
                         }
+                        u = v;
                         h *= 2.0;
                     }
                     None
                 };
-                let (Some(l), Some(r)) = (side(a0, -1.0), side(a1, 1.0)) else {
+                let (Some((l, ul)), Some((r, ur))) =
+                    (side(a0, g[0].1, -1.0), side(a1, g[g.len() - 1].1, 1.0))
+                else {
                     return false;
                 };
                 let clear = groups
@@ -326,8 +343,10 @@ impl QueryCurve {
                     .enumerate()
                     .all(|(i, n)| i == gi || n.iter().all(|x| x.0 < l || x.0 > r));
                 clear
-                    && !(1..10)
-                        .all(|i| gap(l + (r - l) * f64::from(i) / 10.0).0 <= tolerance / 100.0)
+                    && !(1..10).all(|i| {
+                        let f = f64::from(i) / 10.0;
+                        within(l + (r - l) * f, ul + (ur - ul) * f, tolerance / 100.0).0
+                    })
             };
             if !transversal && ((g.len() > 1 && a1 > a0) || probe()) {
                 if short_contact() {
@@ -414,6 +433,65 @@ impl QueryCurve {
         }
         out.sort_by(|x, y| first_t(x).total_cmp(&first_t(y)));
         merge_overlaps(out, self.domain(), other.domain())
+    }
+
+    /// An upper bound of the gap from this curve at `t` to `other`, and where on `other` it is
+    /// measured: the distance to the foot point of `A(t)` on `other` found by Newton's method on
+    /// `(B(u) − A(t))·B'(u) = 0` from `u` (at most 6 steps, clamped to `other`'s domain; the
+    /// nearest of its iterates). Any point of `other` bounds the gap from above, so a bound within
+    /// a limit needs no global projection. Infinite for `t` outside the domain.
+    fn near_gap(
+        &self,
+        other: &QueryCurve,
+        t: f64,
+        u: f64,
+        bufs: &mut (Vec<f64>, Vec<f64>),
+    ) -> (f64, f64) {
+        let (lo, hi) = self.domain();
+        let (blo, bhi) = other.domain();
+        if !(t >= lo && t <= hi && u.is_finite()) {
+            return (f64::INFINITY, u);
+        }
+        let n = other.dim;
+        // the point of this curve, then other's point and derivatives, in `buf` (no allocation)
+        let (scratch, buf) = (&mut bufs.0, &mut bufs.1);
+        buf.clear();
+        buf.resize(4 * n.max(self.dim), 0.0);
+        let (p, b) = buf.split_at_mut(n.max(self.dim));
+        let k = self.piece_of(t);
+        self.eval_local(k, self.local(k, t), 0, scratch, b);
+        for d in 0..n {
+            p[d] = self.centre[d] + self.scale * b[d];
+        }
+        let mut u = u.clamp(blo, bhi);
+        let mut best = (f64::INFINITY, u);
+        for _ in 0..6 {
+            let k = other.piece_of(u);
+            other.eval_local(k, other.local(k, u), 2, scratch, b);
+            let h = other.spans[k].1 - other.spans[k].0;
+            let (mut f, mut fp, mut sq) = (0.0, 0.0, 0.0);
+            for i in 0..n {
+                let e = other.centre[i] + other.scale * b[i] - p[i];
+                let d1 = other.scale * b[n + i] / h;
+                let d2 = other.scale * b[2 * n + i] / (h * h);
+                sq += e * e;
+                f += e * d1;
+                fp += d1 * d1 + e * d2;
+            }
+            let d = sq.sqrt();
+            if d < best.0 {
+                best = (d, u);
+            }
+            if !(fp > 0.0) {
+                break;
+            }
+            let next = (u - f / fp).clamp(blo, bhi);
+            if next == u {
+                break;
+            }
+            u = next;
+        }
+        best
     }
 
     /// An end of an overlap, found by bisection at `t` on this curve: put on the end point of
