@@ -268,6 +268,17 @@ impl QueryCurve {
             (d <= limit, if d.is_finite() { pr.t } else { u })
         };
         let at = |t: f64| self.point(t).unwrap_or_default();
+        // the answers of one contact refined and classified from `(ta, tb)`
+        let contact_points = |ta: f64, tb: f64| {
+            self.classify_contact(other, ta, tb, tolerance)
+                .into_iter()
+                .map(|(t_a, t_b, contact)| CurveIntersection::Point {
+                    t_a,
+                    t_b,
+                    point: at(t_a),
+                    contact,
+                })
+        };
         let on_b = |t: f64| other.point(t).unwrap_or_default();
         // the branches: a solution joins the latest group whose last solution is the same
         // crossing, or runs along the same stretch of both curves (the middles of the two steps,
@@ -350,16 +361,7 @@ impl QueryCurve {
             };
             if !transversal && ((g.len() > 1 && a1 > a0) || probe()) {
                 if short_contact() {
-                    for (t_a, t_b, contact) in
-                        self.classify_contact(other, best.0, best.1, tolerance)
-                    {
-                        out.push(CurveIntersection::Point {
-                            t_a,
-                            t_b,
-                            point: at(t_a),
-                            contact,
-                        });
-                    }
+                    out.extend(contact_points(best.0, best.1));
                     continue;
                 }
                 // grow to where the gap exceeds the tolerance (bisection, 60 steps each side),
@@ -394,14 +396,7 @@ impl QueryCurve {
                 // then refined on the tangency system
                 let t = golden_min(a0, a1, |t| gap(t).0);
                 let (_, pr) = gap(t);
-                for (t_a, t_b, contact) in self.classify_contact(other, t, pr.t, tolerance) {
-                    out.push(CurveIntersection::Point {
-                        t_a,
-                        t_b,
-                        point: at(t_a),
-                        contact,
-                    });
-                }
+                out.extend(contact_points(t, pr.t));
                 continue;
             }
             let point = at(best.0);
@@ -413,15 +408,7 @@ impl QueryCurve {
                 }
             } else {
                 // a lone contact whose gap grows at once beside it: named as a contact
-                let found = self.classify_contact(other, best.0, best.1, tolerance);
-                for (t_a, t_b, contact) in found {
-                    out.push(CurveIntersection::Point {
-                        t_a,
-                        t_b,
-                        point: at(t_a),
-                        contact,
-                    });
-                }
+                out.extend(contact_points(best.0, best.1));
                 continue;
             };
             out.push(CurveIntersection::Point {
