@@ -18,7 +18,7 @@
 //! | `cyclic.rs` | the banded QR whose band wraps around the corner, for closed fits (crate-private kernel) | [#periodic] |
 //! | `progress.rs` | how the fits report to a [`Progress`](crate::Progress) hook and stop when cancelled: steps of iterations of unknown length, checked passes over the data rows (crate-private plumbing, no arithmetic) | — |
 //! | `rows.rs` | the rows of the observation matrix: the weighted non-zero B-splines at each data parameter (crate-private kernel) | [#banded-qr] |
-//! | `shape/` | [`constrained_least_squares`], [`constrained_smoothing_spline`], [`constrained_smoothing_condition`]: fits of `y(x)` kept increasing, convex, bounded, … for every `x`, by a cone program (Clarabel); [`constrained_surface_grid_least_squares`], [`constrained_surface_scattered_least_squares`]: surfaces `z(u, v)` monotone per direction and bounded | [#shape-constraints] |
+//! | `shape/` | [`constrained_least_squares`], [`constrained_smoothing_spline`], [`constrained_smoothing_condition`]: fits of `y(x)` kept increasing, convex, bounded, … for every `x`, by a cone program (Clarabel); [`constrained_surface_grid_least_squares`], [`constrained_surface_scattered_least_squares`], [`constrained_surface_grid_smoothing_spline`], [`constrained_surface_grid_smoothing_condition`]: surfaces `z(u, v)` monotone per direction and bounded | [#shape-constraints] |
 //! | `robust.rs` | [`robust_least_squares`]: IRLS with Huber or Tukey weights | [#robust] |
 //! | `sphere/` | [`sphere_least_squares`], [`sphere_smoothing`] (scattered data), [`sphere_grid_smoothing`] (a grid): bicubic splines on the sphere, periodic in the longitude, with pole conditions (FITPACK `sphere`/`spgrid`) | `docs/theory/sphere.md` |
 //! | `surface.rs` | [`surface_grid_least_squares`] (P&T §9.4.3; [`surface_grid_least_squares_at`] at given parameters and knots, [`surface_grid_parameters`]), [`surface_scattered_least_squares`] | [#surfaces] |
@@ -90,8 +90,10 @@ pub use shape::{
     PointCondition, Shape, ShapeConstraint, ShapeConstraints, CONDITION_RTOL, SHAPE_RTOL,
 };
 pub use shape::{
-    constrained_surface_grid_least_squares, constrained_surface_scattered_least_squares,
-    surface_shape_violations, SurfaceShape, SurfaceShapeConstraint, SurfaceShapeConstraints,
+    constrained_surface_grid_least_squares, constrained_surface_grid_smoothing_condition,
+    constrained_surface_grid_smoothing_spline, constrained_surface_scattered_least_squares,
+    surface_shape_violations, SurfaceGridSmoothing, SurfaceShape, SurfaceShapeConstraint,
+    SurfaceShapeConstraints,
 };
 pub(crate) use smoothing::{
     brent_min, smoothing_system, smoothing_values_and_system, Smoother, SmoothingSystem,

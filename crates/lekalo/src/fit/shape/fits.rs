@@ -368,7 +368,7 @@ fn condition_in_steps(
 
 /// `x > 0` rounded up to four significant digits (`53.522558…` → `53.53`), as a message
 /// suggests a bound; other values unchanged.
-fn digits_up(x: f64) -> f64 {
+pub(super) fn digits_up(x: f64) -> f64 {
     if !(x.is_finite() && x > 0.0) {
         return x;
     }
@@ -389,10 +389,10 @@ fn digits_up(x: f64) -> f64 {
 pub const CONDITION_RTOL: f64 = 1e-3;
 
 /// Decades of λ searched either side of the cross-validation choice.
-const CONDITION_DECADES: usize = 16;
+pub(super) const CONDITION_DECADES: usize = 16;
 
 /// Bisection steps in `log λ` (each halves the bracket's ratio).
-const CONDITION_STEPS: usize = 80;
+pub(super) const CONDITION_STEPS: usize = 80;
 
 /// Bisection in `log λ` between a fit whose residual is below `s` and one above.
 fn bisect_condition(

@@ -21,7 +21,7 @@
 //! | `check.rs` | [`shape_violations`], [`SHAPE_RTOL`]: the exact check of a curve against the constraints, and the scales it is measured in (crate-private otherwise) |
 //! | `working_set.rs` | the cone program on a working set of pieces grown until its optimum keeps every row, the polish and the exact check of its answer (crate-private) |
 //! | `fits.rs` | [`constrained_least_squares`], [`constrained_smoothing_spline`], [`constrained_smoothing_condition`]: the unconstrained fit first, the working set when it breaks a constraint |
-//! | `surface/` | [`constrained_surface_grid_least_squares`], [`constrained_surface_scattered_least_squares`], [`surface_shape_violations`]: surfaces `z(u, v)` monotone per direction and bounded, by linear Bernstein conditions on each knot cell and the same solver (`program.rs`'s sparse entry) |
+//! | `surface/` | [`constrained_surface_grid_least_squares`], [`constrained_surface_scattered_least_squares`], [`constrained_surface_grid_smoothing_spline`], [`constrained_surface_grid_smoothing_condition`], [`surface_shape_violations`]: surfaces `z(u, v)` monotone per direction and bounded, by least squares or the grid's smoothing spline, by linear Bernstein conditions on each knot cell and the same solver (`program.rs`'s sparse entry) |
 
 mod bernstein;
 mod check;
@@ -43,8 +43,10 @@ pub use fits::{
     constrained_smoothing_spline_with_progress, CONDITION_RTOL,
 };
 pub use surface::{
-    constrained_surface_grid_least_squares, constrained_surface_scattered_least_squares,
-    surface_shape_violations, SurfaceShape, SurfaceShapeConstraint, SurfaceShapeConstraints,
+    constrained_surface_grid_least_squares, constrained_surface_grid_smoothing_condition,
+    constrained_surface_grid_smoothing_spline, constrained_surface_scattered_least_squares,
+    surface_shape_violations, SurfaceGridSmoothing, SurfaceShape, SurfaceShapeConstraint,
+    SurfaceShapeConstraints,
 };
 
 #[cfg(test)]

@@ -103,24 +103,7 @@ pub fn constrained_surface_grid_least_squares(
     let (bu, gu) = basis_and_gram(ku, p, uu, ncu);
     let (bv, gv) = basis_and_gram(kv, q, vv, ncv);
     let center = z[0];
-    let mut t = vec![0.0; nu * ncv];
-    for i in 0..nu {
-        for (j, (first, b)) in bv.iter().enumerate() {
-            let zc = (z[i * nv + j] - center) / scale.y;
-            for (o, w) in b.iter().enumerate() {
-                t[i * ncv + first + o] += w * zc;
-            }
-        }
-    }
-    let mut lin = vec![0.0; ncu * ncv];
-    for (i, (first, b)) in bu.iter().enumerate() {
-        for (o, w) in b.iter().enumerate() {
-            let row = (first + o) * ncv;
-            for l in 0..ncv {
-                lin[row + l] -= w * t[i * ncv + l];
-            }
-        }
-    }
+    let lin = grid_linear(z, (nu, nv), (&bu, &bv), (ncu, ncv), center, scale.y);
     let upper = kronecker_upper(&gu, &gv, (ncu, ncv), (p, q));
     let net = solve(&space, &upper, &lin, center, &scale, constraints)?;
     BSplineSurface::from_knot_vectors(
@@ -223,7 +206,7 @@ pub fn constrained_surface_scattered_least_squares(
 }
 
 /// Data of one value per point (`expected` numbers a row).
-fn check_values(dim: usize, expected: usize, what: &'static str) -> Result<()> {
+pub(super) fn check_values(dim: usize, expected: usize, what: &'static str) -> Result<()> {
     if dim != expected {
         return Err(Error::Dimension {
             what: what.into(),
@@ -236,13 +219,13 @@ fn check_values(dim: usize, expected: usize, what: &'static str) -> Result<()> {
 
 /// The scales of the problem: values in units of `Y`, the largest `|z_k − z_0|`, and
 /// derivatives in `Y / L` for the domain's length `L` in their direction.
-struct Scales {
-    y: f64,
+pub(super) struct Scales {
+    pub(super) y: f64,
     lengths: (f64, f64),
 }
 
 impl Scales {
-    fn of(z: &[f64], (du, dv): ((f64, f64), (f64, f64))) -> Self {
+    pub(super) fn of(z: &[f64], (du, dv): ((f64, f64), (f64, f64))) -> Self {
         let y = z.iter().fold(0.0_f64, |m, v| m.max((v - z[0]).abs()));
         Scales {
             y: if y > 0.0 { y } else { z[0].abs().max(1.0) },
@@ -251,7 +234,12 @@ impl Scales {
     }
 
     /// Whether the net `c` keeps every constraint to [`SHAPE_RTOL`] of its scale.
-    fn holds(&self, space: &Space<'_>, c: &[f64], constraints: &SurfaceShapeConstraints) -> bool {
+    pub(super) fn holds(
+        &self,
+        space: &Space<'_>,
+        c: &[f64],
+        constraints: &SurfaceShapeConstraints,
+    ) -> bool {
         violations(space, c, constraints)
             .iter()
             .zip(&constraints.shapes)
@@ -268,7 +256,7 @@ impl Scales {
 
 /// The non-zero basis functions at each parameter (`(first index, values)`) and the Gram
 /// matrix `BᵀB` of one direction (dense, `n × n`, banded with half-width `p`).
-fn basis_and_gram(
+pub(super) fn basis_and_gram(
     knots: &KnotVector,
     p: usize,
     params: &[f64],
@@ -295,10 +283,42 @@ fn basis_and_gram(
     (rows, gram)
 }
 
+/// The linear term `−B_uᵀ (Z − center) B_v / Y` of the grid's objective in the program's
+/// variables `x = (c − center)/Y` (net order `i·n_v + j`), from each direction's basis rows
+/// `(first index, values)` at its parameters.
+pub(super) fn grid_linear(
+    z: &[f64],
+    (nu, nv): (usize, usize),
+    (bu, bv): (&[(usize, Vec<f64>)], &[(usize, Vec<f64>)]),
+    (ncu, ncv): (usize, usize),
+    center: f64,
+    y: f64,
+) -> Vec<f64> {
+    let mut t = vec![0.0; nu * ncv];
+    for i in 0..nu {
+        for (j, (first, b)) in bv.iter().enumerate() {
+            let zc = (z[i * nv + j] - center) / y;
+            for (o, w) in b.iter().enumerate() {
+                t[i * ncv + first + o] += w * zc;
+            }
+        }
+    }
+    let mut lin = vec![0.0; ncu * ncv];
+    for (i, (first, b)) in bu.iter().enumerate() {
+        for (o, w) in b.iter().enumerate() {
+            let row = (first + o) * ncv;
+            for l in 0..ncv {
+                lin[row + l] -= w * t[i * ncv + l];
+            }
+        }
+    }
+    lin
+}
+
 /// The upper triangle of `G_u ⊗ G_v` in the net's order `i·n_v + j`, compressed by columns:
 /// entry `((i, j), (k, l))` is `G_u[i][k]·G_v[j][l]`, non-zero only for `|i − k| ≤ p` and
 /// `|j − l| ≤ q` (block-banded).
-fn kronecker_upper(
+pub(super) fn kronecker_upper(
     gu: &[f64],
     gv: &[f64],
     (nu, nv): (usize, usize),
@@ -383,7 +403,7 @@ fn program_rows(
 /// The net (in the data's units) minimising `½xᵀPx + linᵀx` over `x = (c − center)/Y` subject
 /// to every shape's rows, by Clarabel with every row kept [`MARGIN`] inside its bound (without
 /// it when that leaves no room, as for equal bounds), checked against every condition.
-fn solve(
+pub(super) fn solve(
     space: &Space<'_>,
     upper: &SparseUpper,
     lin: &[f64],

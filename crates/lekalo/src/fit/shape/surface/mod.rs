@@ -14,16 +14,22 @@
 //! | `cells.rs` | the Bernstein coefficients on every knot cell (or piece of one inside a box) of `z`, `∂z/∂u` or `∂z/∂v` as sparse rows over the net (crate-private) |
 //! | `check.rs` | [`surface_shape_violations`]: the Bernstein condition of a surface per constraint |
 //! | `fits.rs` | [`constrained_surface_grid_least_squares`], [`constrained_surface_scattered_least_squares`]: the unconstrained fit first, the program when it breaks a constraint |
+//! | `smoothing.rs` | [`constrained_surface_grid_smoothing_spline`], [`constrained_surface_grid_smoothing_condition`], [`SurfaceGridSmoothing`]: the grid's smoothing spline (penalty weights given, by GCV, or for a residual `s`) kept in shape, its penalised objective the program's |
 
 mod cells;
 mod check;
 mod constraints;
 mod fits;
+mod smoothing;
 
 pub use check::surface_shape_violations;
 pub use constraints::{SurfaceShape, SurfaceShapeConstraint, SurfaceShapeConstraints};
 pub use fits::{
     constrained_surface_grid_least_squares, constrained_surface_scattered_least_squares,
+};
+pub use smoothing::{
+    constrained_surface_grid_smoothing_condition, constrained_surface_grid_smoothing_spline,
+    SurfaceGridSmoothing,
 };
 
 #[cfg(test)]

@@ -119,6 +119,19 @@ fn kkt_residual(
     c: &SurfaceShapeConstraints,
     active: f64,
 ) -> f64 {
+    kkt_residual_penalised(design, z, s, c, active, &[])
+}
+
+/// [`kkt_residual`] of `min ½‖Bc − z‖² + ½cᵀKc` with the dense penalty matrix `K` (none when
+/// empty): the gradient `Bᵀ(Bc − z) + Kc`.
+fn kkt_residual_penalised(
+    design: &[Vec<f64>],
+    z: &[f64],
+    s: &BSplineSurface,
+    c: &SurfaceShapeConstraints,
+    active: f64,
+    penalty: &[Vec<f64>],
+) -> f64 {
     let (ku, kv) = s.knots();
     let space = Space {
         degrees: s.degree(),
@@ -136,6 +149,9 @@ fn kkt_residual(
             grad[k] += row[k] * r;
             scale[k] += row[k] * zk;
         }
+    }
+    for (g, row) in grad.iter_mut().zip(penalty) {
+        *g += row.iter().zip(x).map(|(a, b)| a * b).sum::<f64>();
     }
     // the active rows as dense vectors (σ·∂b/∂c)
     let mut rows: Vec<Vec<f64>> = Vec::new();
@@ -657,3 +673,5 @@ fn a_monotone_surface_between_boxed_bounds_that_contradict_it_is_named() {
         "{conflicting:?}"
     );
 }
+
+mod smoothing;

@@ -1,0 +1,337 @@
+//! The smoothing spline on a grid `z(u, v)` that keeps its shape
+//! (`docs/theory/fitting.md#shape-constrained-smoothing-of-surfaces`): the penalised objective of
+//! [`tensor_grid_smoothing_spline`] as the quadratic program's objective, with the weights
+//! given, chosen by GCV for the unconstrained spline, or scaled together until the residual is
+//! `s`.
+
+use super::super::fits::{digits_up, CONDITION_DECADES, CONDITION_RTOL, CONDITION_STEPS};
+use super::cells::Space;
+use super::constraints::SurfaceShapeConstraints;
+use super::fits::{basis_and_gram, check_values, grid_linear, kronecker_upper, solve, Scales};
+use crate::error::{Error, Result};
+use crate::fit::{FitData, Lambda, Smoother};
+use crate::knots::KnotVector;
+use crate::message::readable;
+use crate::points::{Points, PointsRef};
+use crate::surface::BSplineSurface;
+use crate::{tensor_grid_smoothing_spline, TensorGridSmoothingSpline};
+use crate::{Arg, What};
+
+/// The result of [`constrained_surface_grid_smoothing_spline`] and
+/// [`constrained_surface_grid_smoothing_condition`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceGridSmoothing {
+    /// The fitted surface: bicubic, with a knot at every grid coordinate (`(n_u + 2) × (n_v + 2)`
+    /// control points), the space of [`tensor_grid_smoothing_spline`].
+    pub surface: BSplineSurface,
+    /// The penalty weights `(λ_u, λ_v)` of the fit (given, chosen by GCV for the unconstrained
+    /// spline, or scaled to meet the smoothing condition).
+    pub lambdas: [f64; 2],
+    /// `RSS = Σ_ij (z(u_i, v_j) − z_ij)²` over the nodes.
+    pub residual: f64,
+}
+
+/// The smoothing spline on the grid `uu × vv` of values `z_ij` (one number a node, value
+/// `(i, j)` at `i·n_v + j`) with the penalty weights `(λ_u, λ_v)` of
+/// [`tensor_grid_smoothing_spline`], that keeps every shape of `constraints` (each on the
+/// whole domain or on its box). It minimises that spline's objective
+///
+/// `‖(B_u ⊗ B_v) c − z‖² + cᵀ((G_u + λ_uΩ_u) ⊗ (G_v + λ_vΩ_v) − G_u ⊗ G_v) c`
+///
+/// (`G_a = B_aᵀB_a`, `Ω_a = ∫ B_a'' B_a''ᵀ`, clamped cubic B-splines with a knot at every grid
+/// coordinate), whose Hessian `(G_u + λ_uΩ_u) ⊗ (G_v + λ_vΩ_v)` is passed to Clarabel as the
+/// quadratic program's sparse matrix, over the surfaces whose cells satisfy the Bernstein
+/// condition of each shape (as [`constrained_surface_grid_least_squares`](super::constrained_surface_grid_least_squares):
+/// sufficient everywhere; for bicubic cells a slightly stricter problem than the shape itself).
+///
+/// With [`Lambda::Gcv`] in a direction, its weight is the one generalised cross-validation
+/// chooses for the **unconstrained** spline ([`tensor_grid_smoothing_spline`] with the same
+/// weights); the constrained optimum is then taken at those weights, as the curves'
+/// [`constrained_smoothing_spline`](crate::fit::constrained_smoothing_spline) does. When the
+/// unconstrained spline already keeps every condition (to
+/// [`SHAPE_RTOL`](crate::fit::SHAPE_RTOL)) it is returned unchanged
+/// (`docs/theory/fitting.md#shape-constrained-smoothing-of-surfaces`).
+///
+/// ```
+/// use lekalo::fit::{constrained_surface_grid_smoothing_spline, surface_shape_violations, Lambda, SurfaceShape, SurfaceShapeConstraints};
+/// use lekalo::{Direction, PointsRef};
+/// let u: Vec<f64> = (0..14).map(|i| i as f64 / 13.0).collect();
+/// let v: Vec<f64> = (0..10).map(|j| j as f64 / 9.0).collect();
+/// // rising in u, with a ripple that makes the smoothing spline dip
+/// let z: Vec<f64> = u.iter().flat_map(|&x| v.iter().map(move |&y| x + y * y + 0.2 * (11.0 * x).sin())).collect();
+/// let c = SurfaceShapeConstraints::new().with(SurfaceShape::Increasing(Direction::U));
+/// let f = constrained_surface_grid_smoothing_spline(PointsRef::from_flat(1, &z)?, (&u, &v), [Lambda::Given(1e-5), Lambda::Gcv], &c)?;
+/// assert_eq!(surface_shape_violations(&f.surface, &c)?, vec![0.0]);
+/// assert_eq!(f.surface.net_size(), (16, 12));
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// The errors of [`tensor_grid_smoothing_spline`]; [`Error::Dimension`] for values that are not
+/// numbers; [`Error::NegativeSmoothing`] for a given `λ_a ≤ 0` or not finite (the constrained
+/// program needs the penalty in both directions); the constraint errors of
+/// [`constrained_surface_grid_least_squares`](super::constrained_surface_grid_least_squares).
+pub fn constrained_surface_grid_smoothing_spline(
+    values: PointsRef<'_>,
+    (uu, vv): (&[f64], &[f64]),
+    lambdas: [Lambda; 2],
+    constraints: &SurfaceShapeConstraints,
+) -> Result<SurfaceGridSmoothing> {
+    check_values(
+        values.dim(),
+        1,
+        "grid values of a surface z(u, v) (one number each)",
+    )?;
+    for l in lambdas {
+        if let Lambda::Given(l) = l {
+            if !(l > 0.0 && l.is_finite()) {
+                return Err(Error::NegativeSmoothing {
+                    what: What::of(
+                        Arg::Lambda,
+                        "λ (a shape-constrained smoothing spline needs λ > 0 in each direction)",
+                    ),
+                    value: l,
+                });
+            }
+        }
+    }
+    let free = tensor_grid_smoothing_spline(&[uu, vv], values, &lambdas)?;
+    let grid = Grid::new(values, (uu, vv), constraints)?;
+    let lams = [free.lambdas[0], free.lambdas[1]];
+    grid.fit(lams, Some(free), constraints)
+}
+
+/// The shape-constrained smoothing spline on a grid of
+/// [`constrained_surface_grid_smoothing_spline`] whose residual `Σ_ij (z(u_i, v_j) − z_ij)²` is
+/// `s`: Reinsch's smoothing condition on the space of the grid's smoothing spline (a knot at
+/// every grid coordinate), as the curves'
+/// [`constrained_smoothing_condition`](crate::fit::constrained_smoothing_condition). The two
+/// weights move together along the ray `t·(λ_u*, λ_v*)` from the weights `λ*` that generalised
+/// cross-validation chooses for the unconstrained spline (their ratio kept): `t` is bracketed
+/// by factors of ten from `t = 1`, then found by bisection in `log t` until the residual of the
+/// constrained optimum is within [`CONDITION_RTOL`] of `s`. Where even the largest `t` tried
+/// leaves less than `s`, that fit is returned (its residual below `s`).
+///
+/// ```
+/// use lekalo::fit::{constrained_surface_grid_smoothing_condition, surface_shape_violations, SurfaceShape, SurfaceShapeConstraints};
+/// use lekalo::{Direction, PointsRef};
+/// let u: Vec<f64> = (0..12).map(|i| i as f64 / 11.0).collect();
+/// let v: Vec<f64> = (0..9).map(|j| j as f64 / 8.0).collect();
+/// let z: Vec<f64> = u.iter().flat_map(|&x| v.iter().map(move |&y| x * y + 0.1 * (13.0 * x + 5.0 * y).sin())).collect();
+/// let c = SurfaceShapeConstraints::new().with(SurfaceShape::AtLeast(0.0));
+/// let f = constrained_surface_grid_smoothing_condition(PointsRef::from_flat(1, &z)?, (&u, &v), 0.5, &c)?;
+/// assert!((f.residual - 0.5).abs() <= 1e-3 * 0.5);
+/// assert_eq!(surface_shape_violations(&f.surface, &c)?, vec![0.0]);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// Those of [`constrained_surface_grid_smoothing_spline`]; [`Error::NegativeSmoothing`] for
+/// `s < 0` or not finite; [`Error::InvalidArgument`] when the constraints leave a residual above
+/// `s` at every weight tried (the message gives the least residual they allow).
+pub fn constrained_surface_grid_smoothing_condition(
+    values: PointsRef<'_>,
+    (uu, vv): (&[f64], &[f64]),
+    s: f64,
+    constraints: &SurfaceShapeConstraints,
+) -> Result<SurfaceGridSmoothing> {
+    if !(s >= 0.0 && s.is_finite()) {
+        return Err(Error::NegativeSmoothing {
+            what: Arg::S.into(),
+            value: s,
+        });
+    }
+    let start =
+        constrained_surface_grid_smoothing_spline(values, (uu, vv), [Lambda::Gcv; 2], constraints)?;
+    let lam0 = start.lambdas;
+    if !lam0.iter().all(|l| *l > 0.0 && l.is_finite()) {
+        return Ok(start);
+    }
+    let grid = Grid::new(values, (uu, vv), constraints)?;
+    let fit_at = |t: f64| grid.fit([t * lam0[0], t * lam0[1]], None, constraints);
+    let close = |f: &SurfaceGridSmoothing| (f.residual - s).abs() <= CONDITION_RTOL * s;
+    if close(&start) {
+        return Ok(start);
+    }
+    // bracket: (t, fit) with the residual below s and above it
+    let below = start.residual < s;
+    let mut near = (1.0, start);
+    for _ in 0..CONDITION_DECADES {
+        let t = if below { near.0 * 10.0 } else { near.0 / 10.0 };
+        let f = match fit_at(t) {
+            Ok(f) => f,
+            // weights so small (or large) that the program loses its pivots: the search ends
+            // at the last one solved
+            Err(Error::SingularSystem { .. } | Error::IllConditioned { .. }) => break,
+            Err(e) => return Err(e),
+        };
+        if close(&f) {
+            return Ok(f);
+        }
+        if (f.residual < s) != below {
+            let (mut lo, mut hi) = if below {
+                (near, (t, f))
+            } else {
+                ((t, f), near)
+            };
+            for _ in 0..CONDITION_STEPS {
+                let t = (lo.0 * hi.0).sqrt();
+                if t <= lo.0 || t >= hi.0 {
+                    break;
+                }
+                let f = fit_at(t)?;
+                if close(&f) {
+                    return Ok(f);
+                }
+                if f.residual < s {
+                    lo = (t, f);
+                } else {
+                    hi = (t, f);
+                }
+            }
+            let d = |f: &SurfaceGridSmoothing| (f.residual - s).abs();
+            return Ok(if d(&lo.1) <= d(&hi.1) { lo.1 } else { hi.1 });
+        }
+        near = (t, f);
+    }
+    if below {
+        // even the smoothest fit tried stays below s
+        return Ok(near.1);
+    }
+    let least = digits_up(near.1.residual);
+    Err(Error::InvalidArgument {
+        what: What::of(Arg::S, "s (smoothing condition)"),
+        reason: format!(
+            "the shape constraints leave a residual sum of squares of at least about {least} \
+             (at the smallest penalty tried), above s = {s}; give s ≥ {least}, or fewer \
+             constraints",
+            least = readable(&least),
+            s = readable(&s)
+        ),
+    })
+}
+
+/// The pieces of the program every weight shares: the values, the knots of the grid's
+/// smoothing spline, each direction's basis rows, Gram matrix `G_a` and roughness `Ω_a`
+/// (dense, banded with half-width 3), and the scales.
+struct Grid<'a> {
+    values: PointsRef<'a>,
+    params: (&'a [f64], &'a [f64]),
+    knots: (KnotVector, KnotVector),
+    rows: [Vec<(usize, Vec<f64>)>; 2],
+    gram: [Vec<f64>; 2],
+    omega: [Vec<f64>; 2],
+    scale: Scales,
+}
+
+impl<'a> Grid<'a> {
+    fn new(
+        values: PointsRef<'a>,
+        (uu, vv): (&'a [f64], &'a [f64]),
+        constraints: &SurfaceShapeConstraints,
+    ) -> Result<Self> {
+        let axis = |x: &[f64]| -> Result<(KnotVector, Vec<(usize, Vec<f64>)>, Vec<f64>, Vec<f64>)> {
+            let zeros = vec![0.0; x.len()];
+            let sm = Smoother::new(&FitData::new(PointsRef::from_flat(1, &zeros)?, x)?)?;
+            let k = KnotVector::new(sm.knots.clone())?;
+            let n = k.len() - 4;
+            let (rows, gram) = basis_and_gram(&k, 3, x, n);
+            let mut omega = vec![0.0; n * n];
+            let b = sm.omega.b;
+            for i in 0..n {
+                for o in 0..=b.min(n - 1 - i) {
+                    let w = sm.omega.a[i * (b + 1) + o];
+                    omega[i * n + i + o] = w;
+                    omega[(i + o) * n + i] = w;
+                }
+            }
+            Ok((k, rows, gram, omega))
+        };
+        let (ku, ru, gu, ou) = axis(uu)?;
+        let (kv, rv, gv, ov) = axis(vv)?;
+        constraints.validate((3, 3), [ku.domain(3), kv.domain(3)])?;
+        let scale = Scales::of(values.as_slice(), (ku.domain(3), kv.domain(3)));
+        Ok(Grid {
+            values,
+            params: (uu, vv),
+            knots: (ku, kv),
+            rows: [ru, rv],
+            gram: [gu, gv],
+            omega: [ou, ov],
+            scale,
+        })
+    }
+
+    /// The constrained optimum at the weights `lams`: the unconstrained spline (`free`, or fitted
+    /// here) when it keeps every condition, the quadratic program's answer otherwise.
+    fn fit(
+        &self,
+        lams: [f64; 2],
+        free: Option<TensorGridSmoothingSpline>,
+        constraints: &SurfaceShapeConstraints,
+    ) -> Result<SurfaceGridSmoothing> {
+        let (uu, vv) = self.params;
+        let free = match free {
+            Some(f) => f,
+            None => tensor_grid_smoothing_spline(
+                &[uu, vv],
+                self.values,
+                &[Lambda::Given(lams[0]), Lambda::Given(lams[1])],
+            )?,
+        };
+        let plain = free.spline.to_surface()?;
+        let (ku, kv) = (&self.knots.0, &self.knots.1);
+        let (ncu, ncv) = (ku.len() - 4, kv.len() - 4);
+        let space = Space {
+            degrees: (3, 3),
+            knots: (ku.as_slice(), kv.as_slice()),
+            net: (ncu, ncv),
+        };
+        if self
+            .scale
+            .holds(&space, plain.control_points().as_slice(), constraints)
+        {
+            return Ok(SurfaceGridSmoothing {
+                surface: plain,
+                lambdas: lams,
+                residual: free.residual,
+            });
+        }
+        // ½cᵀ((G_u + λ_uΩ_u) ⊗ (G_v + λ_vΩ_v))c − ((B_u ⊗ B_v)ᵀz)ᵀc in c = center + Y·x
+        let penalised = |a: usize| -> Vec<f64> {
+            self.gram[a]
+                .iter()
+                .zip(&self.omega[a])
+                .map(|(g, o)| g + lams[a] * o)
+                .collect()
+        };
+        let upper = kronecker_upper(&penalised(0), &penalised(1), (ncu, ncv), (3, 3));
+        let z = self.values.as_slice();
+        let center = z[0];
+        let lin = grid_linear(
+            z,
+            (uu.len(), vv.len()),
+            (&self.rows[0], &self.rows[1]),
+            (ncu, ncv),
+            center,
+            self.scale.y,
+        );
+        let net = solve(&space, &upper, &lin, center, &self.scale, constraints)?;
+        let surface = BSplineSurface::from_knot_vectors(
+            3,
+            3,
+            ku.clone(),
+            kv.clone(),
+            Points::from_flat(1, net)?,
+            (ncu, ncv),
+        )?;
+        let mut at = vec![0.0; z.len()];
+        surface.eval_grid(uu, vv, &mut at)?;
+        let residual = at.iter().zip(z).map(|(f, y)| (f - y) * (f - y)).sum();
+        Ok(SurfaceGridSmoothing {
+            surface,
+            lambdas: lams,
+            residual,
+        })
+    }
+}
