@@ -254,6 +254,10 @@ impl Scales {
     }
 }
 
+/// The non-zero basis functions of one direction at each of its parameters: `(first index,
+/// values)`, the rows of the direction's design matrix `B_a`.
+pub(super) type BasisRows = Vec<(usize, Vec<f64>)>;
+
 /// The non-zero basis functions at each parameter (`(first index, values)`) and the Gram
 /// matrix `BᵀB` of one direction (dense, `n × n`, banded with half-width `p`).
 pub(super) fn basis_and_gram(
@@ -261,10 +265,10 @@ pub(super) fn basis_and_gram(
     p: usize,
     params: &[f64],
     n: usize,
-) -> (Vec<(usize, Vec<f64>)>, Vec<f64>) {
+) -> (BasisRows, Vec<f64>) {
     let mut scratch = BasisScratch::new(p);
     let mut gram = vec![0.0; n * n];
-    let rows: Vec<(usize, Vec<f64>)> = params
+    let rows: BasisRows = params
         .iter()
         .map(|&t| {
             let span = knots.span_unchecked(p, t);
@@ -289,7 +293,7 @@ pub(super) fn basis_and_gram(
 pub(super) fn grid_linear(
     z: &[f64],
     (nu, nv): (usize, usize),
-    (bu, bv): (&[(usize, Vec<f64>)], &[(usize, Vec<f64>)]),
+    (bu, bv): (&BasisRows, &BasisRows),
     (ncu, ncv): (usize, usize),
     center: f64,
     y: f64,

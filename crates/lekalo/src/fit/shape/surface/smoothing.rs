@@ -7,7 +7,9 @@
 use super::super::fits::{digits_up, CONDITION_DECADES, CONDITION_RTOL, CONDITION_STEPS};
 use super::cells::Space;
 use super::constraints::SurfaceShapeConstraints;
-use super::fits::{basis_and_gram, check_values, grid_linear, kronecker_upper, solve, Scales};
+use super::fits::{
+    basis_and_gram, check_values, grid_linear, kronecker_upper, solve, BasisRows, Scales,
+};
 use crate::error::{Error, Result};
 use crate::fit::{FitData, Lambda, Smoother};
 use crate::knots::KnotVector;
@@ -218,7 +220,7 @@ struct Grid<'a> {
     values: PointsRef<'a>,
     params: (&'a [f64], &'a [f64]),
     knots: (KnotVector, KnotVector),
-    rows: [Vec<(usize, Vec<f64>)>; 2],
+    rows: [BasisRows; 2],
     gram: [Vec<f64>; 2],
     omega: [Vec<f64>; 2],
     scale: Scales,
@@ -230,7 +232,7 @@ impl<'a> Grid<'a> {
         (uu, vv): (&'a [f64], &'a [f64]),
         constraints: &SurfaceShapeConstraints,
     ) -> Result<Self> {
-        let axis = |x: &[f64]| -> Result<(KnotVector, Vec<(usize, Vec<f64>)>, Vec<f64>, Vec<f64>)> {
+        let axis = |x: &[f64]| -> Result<(KnotVector, BasisRows, Vec<f64>, Vec<f64>)> {
             let zeros = vec![0.0; x.len()];
             let sm = Smoother::new(&FitData::new(PointsRef::from_flat(1, &zeros)?, x)?)?;
             let k = KnotVector::new(sm.knots.clone())?;

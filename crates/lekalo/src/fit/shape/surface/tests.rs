@@ -132,6 +132,23 @@ fn kkt_residual_penalised(
     active: f64,
     penalty: &[Vec<f64>],
 ) -> f64 {
+    kkt_parts(design, z, s, c, active, penalty).0
+}
+
+/// The two parts of [`kkt_residual_penalised`]'s check: the stationarity residual, and the
+/// complementarity gap `Σ λ_k g_k` of the multipliers found over the rows' slacks `g_k`,
+/// relative to `½‖z‖²`. With rows counted active up to a slack `active`, a multiplier on a row
+/// of positive slack is allowed; the gap bounds what that costs: the objective is within
+/// `gap·½‖z‖²` (plus what the stationarity residual leaves) of the constrained minimum
+/// (weak duality of the convex program).
+fn kkt_parts(
+    design: &[Vec<f64>],
+    z: &[f64],
+    s: &BSplineSurface,
+    c: &SurfaceShapeConstraints,
+    active: f64,
+    penalty: &[Vec<f64>],
+) -> (f64, f64) {
     let (ku, kv) = s.knots();
     let space = Space {
         degrees: s.degree(),
@@ -155,6 +172,7 @@ fn kkt_residual_penalised(
     }
     // the active rows as dense vectors (σ·∂b/∂c)
     let mut rows: Vec<Vec<f64>> = Vec::new();
+    let mut slacks: Vec<f64> = Vec::new();
     for constraint in &c.shapes {
         let shape = constraint.shape;
         let (sigma, level) = (shape.sign(), shape.level());
@@ -168,15 +186,25 @@ fn kkt_residual_penalised(
             let norm = dense.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
             if g <= active * norm {
                 rows.push(dense.iter().map(|v| v / norm).collect());
+                slacks.push(g / norm);
             }
         }
     }
     // min ½‖Aᵀλ − grad‖² over λ ≥ 0 by accelerated projected gradient
     let m = rows.len();
-    let lip: f64 = rows
-        .iter()
-        .map(|r| r.iter().map(|v| v * v).sum::<f64>())
-        .sum();
+    // the step: Gershgorin's bound on the largest eigenvalue of AAᵀ, max_i Σ_j |r_i·r_j| ≤
+    // max_i Σ_k |r_ik| Σ_j |r_jk|, far below the sum of the rows' squares on banded rows
+    let lip = {
+        let mut column = vec![0.0; n];
+        for r in &rows {
+            for (ck, rk) in column.iter_mut().zip(r) {
+                *ck += rk.abs();
+            }
+        }
+        rows.iter()
+            .map(|r| r.iter().zip(&column).map(|(a, b)| a.abs() * b).sum::<f64>())
+            .fold(f64::MIN_POSITIVE, f64::max)
+    };
     let mut lam = vec![0.0; m];
     let mut y = lam.clone();
     let mut t = 1.0_f64;
@@ -198,6 +226,17 @@ fn kkt_residual_penalised(
                 (yi - r.iter().zip(&res).map(|(a, b)| a * b).sum::<f64>() / lip).max(0.0)
             })
             .collect();
+        // adaptive restart (O'Donoghue & Candès 2015): the momentum is dropped when it points
+        // uphill, which keeps the accelerated rate on the degenerate faces of many active rows
+        let uphill: f64 = y
+            .iter()
+            .zip(&next)
+            .zip(&lam)
+            .map(|((yi, ni), li)| (yi - ni) * (ni - li))
+            .sum();
+        if uphill > 0.0 {
+            t = 1.0;
+        }
         let t1 = 0.5 * (1.0 + (1.0 + 4.0 * t * t).sqrt());
         y = next
             .iter()
@@ -213,7 +252,11 @@ fn kkt_residual_penalised(
         .map(|(a, g)| (a - g) * (a - g))
         .sum::<f64>()
         .sqrt();
-    res / scale.iter().map(|v| v * v).sum::<f64>().sqrt()
+    let gap: f64 = lam.iter().zip(&slacks).map(|(l, g)| l * g).sum();
+    (
+        res / scale.iter().map(|v| v * v).sum::<f64>().sqrt(),
+        gap / (0.5 * z.iter().map(|v| v * v).sum::<f64>()),
+    )
 }
 
 #[test]
