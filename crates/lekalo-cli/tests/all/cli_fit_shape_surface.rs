@@ -253,3 +253,89 @@ fn a_shape_on_a_box_holds_there_only() {
     s.eval_into(0.25, 0.5, &mut b).unwrap();
     assert!(b[0] < a[0], "{a:?} {b:?}");
 }
+
+/// The grid's smoothing spline of `args` (a `bspline_tensor` in two variables) as a surface,
+/// with the report.
+fn smoothed(args: &[&str], stdin: String) -> (lekalo::BSplineSurface, serde_json::Value) {
+    let out = lekalo()
+        .args(args)
+        .write_stdin(stdin)
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let v: serde_json::Value = serde_json::from_slice(&out).unwrap();
+    let lekalo::Tensor::BSpline(t) =
+        lekalo_io::read_tensor(&v["object"].to_string(), "fit").unwrap()
+    else {
+        panic!("a B-spline tensor: {v}")
+    };
+    (t.to_surface().unwrap(), v["report"].clone())
+}
+
+#[test]
+fn a_grid_smoothed_in_shape_keeps_it_with_its_weights_or_its_residual() {
+    let rising = SurfaceShapeConstraints::new().with(SurfaceShape::Increasing(Direction::U));
+    let base = ["fit", "-", "--grid", "16x12", "--json"];
+    // without shapes, rows u, v, z on a grid are points of a surface in space: the table's
+    // plain smoothing spline reads its values alone at the coordinates
+    let values: String = table()
+        .lines()
+        .map(|l| format!("{}\n", l.split(' ').nth(2).unwrap()))
+        .collect();
+    let us: Vec<String> = (0..16).map(|i| (f64::from(i) / 15.0).to_string()).collect();
+    let vs: Vec<String> = (0..12).map(|j| (f64::from(j) / 11.0).to_string()).collect();
+    let (pu, pv) = (us.join(","), vs.join(","));
+    let coordinates = ["--params-u", &pu, "--params-v", &pv];
+    let (free, plain) = smoothed(
+        &[&base[..], &["--smooth", "1e-5,gcv"], &coordinates[..]].concat(),
+        values.clone(),
+    );
+    assert!(surface_shape_violations(&free, &rising).unwrap()[0] > 1e-3);
+    let (s, report) = smoothed(
+        &[&base[..], &["--smooth", "1e-5,gcv", "--increasing=u"]].concat(),
+        table(),
+    );
+    assert_eq!(surface_shape_violations(&s, &rising).unwrap(), vec![0.0]);
+    assert_eq!(report["constraints"][0], "increasing in u");
+    // the weight of GCV is the unconstrained spline's; the residual rises
+    assert_eq!(report["lambda"], plain["lambda"]);
+    let rss = |r: &serde_json::Value| r["weighted_rss"].as_f64().unwrap();
+    assert!(rss(&report) > rss(&plain));
+    // the smoothing condition: the residual asked, in shape
+    let target = 2.0 * rss(&report);
+    let (s, report) = smoothed(
+        &[&base[..], &["--s", &target.to_string(), "--increasing=u"]].concat(),
+        table(),
+    );
+    // one value a node at the coordinates gives the same fit as the rows u, v, z
+    let (same, _) = smoothed(
+        &[
+            &base[..],
+            &["--s", &target.to_string(), "--increasing=u"],
+            &coordinates[..],
+        ]
+        .concat(),
+        values,
+    );
+    assert_eq!(same, s);
+    assert_eq!(surface_shape_violations(&s, &rising).unwrap(), vec![0.0]);
+    assert!((rss(&report) - target).abs() <= 1e-3 * target, "{report}");
+    // refusals in the user's words
+    for (flags, message) in [
+        (&["--smooth", "0", "--increasing=u"][..], "give λ > 0"),
+        (&["--s", "1e-9", "--max", "0"], "give s ≥"),
+        (
+            &["--smooth", "gcv", "--ctrl-grid", "6x5", "--increasing=u"],
+            "a knot at every grid line",
+        ),
+    ] {
+        lekalo()
+            .args([&base[..], flags].concat())
+            .write_stdin(table())
+            .assert()
+            .code(2)
+            .stderr(contains(message));
+    }
+}

@@ -66,8 +66,9 @@ every x, not only at the data; repeat an option for several intervals; =X or @X:
   --min V[@A:B] --max V[@A:B]   bounds on y;  --through X=V  y(X) = V;  --slope-at X=V  y'(X) = V
   --integral A:B=V  the integral of y over [A, B];  with --periodic (--lsq): a periodic y(x)
 A surface z(u, v) (--grid NUxNV of rows u,v,z or of one value per node at --params-u/-v, or
---scattered rows u,v,z; least squares, with --penalty for scattered rows) keeps, on its whole
-domain or with @U0:U1,V0:V1 on a box: --increasing[=u|v|u,v] --decreasing[=u|v|u,v] (bare: both
+--scattered rows u,v,z; least squares, with --penalty for scattered rows; on a grid also the
+smoothing spline, --smooth LU,LV or gcv, or --s S for its residual) keeps, on its whole domain
+or with @U0:U1,V0:V1 on a box: --increasing[=u|v|u,v] --decreasing[=u|v|u,v] (bare: both
 directions) --min V --max V
 
 The report (residual max and RMS, λ or s, control points; with --tolerance the residuals are

@@ -30,12 +30,7 @@ pub(super) fn run_surface(
 ) -> Result<()> {
     let (p, q) = a.surface_degrees()?;
     let shapes = surface_shape_constraints(a)?;
-    if !shapes.is_empty() && (a.smooth.is_some() || a.s.is_some()) {
-        return bad_input(
-            "a surface keeps --increasing, --decreasing, --min, --max in least squares on given \
-             knots or --ctrl-grid (with --penalty for scattered rows); drop --smooth or --s",
-        );
-    }
+    // (a grid smoothed in shape, by --smooth or --s, is the tensor fit's: see tensor::grid_shapes)
     let counts = match &a.ctrl_grid {
         Some(cg) => {
             let (ncu, ncv) = net_size(cg, "--ctrl-grid")?;
@@ -276,7 +271,7 @@ fn emit_report(
 /// The table `z(u, v)` a grid with shape constraints holds: one value per node at the
 /// coordinates `--params-u`, `--params-v` (equally spaced on [0, 1] when not given), or rows
 /// `u, v, z` whose `u` is the same along each grid row and `v` along each column.
-fn table_of_grid(
+pub(super) fn table_of_grid(
     pts: &Points,
     (nu, nv): (usize, usize),
     gu: Option<Vec<f64>>,

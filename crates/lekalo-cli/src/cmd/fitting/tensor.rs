@@ -10,7 +10,10 @@ use std::cmp::Ordering;
 use std::path::PathBuf;
 
 use anyhow::Result;
-use lekalo::fit::{check_schoenberg_whitney, place_knots};
+use lekalo::fit::{
+    check_schoenberg_whitney, constrained_surface_grid_smoothing_condition,
+    constrained_surface_grid_smoothing_spline, place_knots, Lambda, SurfaceShapeConstraints,
+};
 use lekalo::{
     tensor_grid_least_squares, tensor_grid_smoothing, tensor_grid_smoothing_spline,
     tensor_scattered_penalized_least_squares, tensor_scattered_smoothing, KnotLimit, KnotVector,
@@ -20,6 +23,8 @@ use lekalo::{
 use serde_json::{json, Value};
 
 use super::args::{clamped, smoothing_weights, span, with_ends, FitArgs};
+use super::shapes::surface_shape_constraints;
+use super::surface::table_of_grid;
 use crate::cmd::tensor::{
     checked_grid_values, degrees_for, direction_of, given_knots, given_parameters, grid_factors,
     grid_parameters, Given,
@@ -36,6 +41,11 @@ use crate::output::emit;
 pub(super) fn variables(a: &FitArgs) -> Result<Option<usize>> {
     if let (Some(g), Some(_)) = (&a.grid, &a.smooth) {
         // the smoothing spline on a grid, surfaces included (lekalo::tensor_grid_smoothing_spline)
+        return Ok(Some(grid_factors(g)?.len()));
+    }
+    if let (Some(g), Some(_), true) = (&a.grid, &a.s, a.shape_given()) {
+        // a surface's smoothing condition in shape: the grid's smoothing spline
+        // (lekalo::fit::constrained_surface_grid_smoothing_condition)
         return Ok(Some(grid_factors(g)?.len()));
     }
     let per_direction = !a.knots_in.is_empty() || !a.params_in.is_empty();
@@ -83,7 +93,8 @@ pub(super) fn variables(a: &FitArgs) -> Result<Option<usize>> {
 
 /// The fit in `n ≥ 3` variables asked by `a`, written with its report.
 pub(super) fn run(a: &FitArgs, n: usize, cx: &Context) -> Result<()> {
-    refuse_curve_options(a)?;
+    let shapes = grid_shapes(a, n)?;
+    refuse_curve_options(a, !shapes.is_empty())?;
     let (to, out) = (a.out.to.as_deref(), a.out.output.as_deref());
     if crate::output::objects::tensor_format(n, to, out)? == "npz" && a.json {
         return bad_input(
@@ -141,7 +152,7 @@ pub(super) fn run(a: &FitArgs, n: usize, cx: &Context) -> Result<()> {
         );
     }
     if a.grid.is_some() {
-        return run_grid(a, &dirs, &inputs, cx);
+        return run_grid(a, &dirs, &shapes, &inputs, cx);
     }
     let weights = match &a.weights {
         Some(p) => {
@@ -237,7 +248,13 @@ impl Direction {
 /// Least squares on the grid of `a.grid`: its values one row per node, the first direction
 /// slowest (or a `.npy` array), at the parameters given (`--params-u`, `--params-v`,
 /// `--params-in K=LIST`) or those of `--param` averaged over the grid's lines.
-fn run_grid(a: &FitArgs, dirs: &[Direction], inputs: &[PathBuf], cx: &Context) -> Result<()> {
+fn run_grid(
+    a: &FitArgs,
+    dirs: &[Direction],
+    shapes: &SurfaceShapeConstraints,
+    inputs: &[PathBuf],
+    cx: &Context,
+) -> Result<()> {
     if a.weights.is_some() {
         return bad_input(
             "--weights is for scattered data; a grid's least squares weighs every node alike \
@@ -249,6 +266,9 @@ fn run_grid(a: &FitArgs, dirs: &[Direction], inputs: &[PathBuf], cx: &Context) -
     let degrees: Vec<usize> = dirs.iter().map(|d| d.degree).collect();
     let values = checked_grid_values(g, &shape, &a.points, cx)?;
     let given = given_parameters(a.grid_params(), &shape, g, cx)?;
+    if !shapes.is_empty() {
+        return run_grid_in_shape(a, dirs, shapes, (&values, given, &shape), inputs, cx);
+    }
     let interp = TensorInterpolation::new(degrees.clone()).parametrization(a.grid_param());
     let params = grid_parameters(&interp, given, &values, &shape)?;
     let refs: Vec<&[f64]> = params.iter().map(Vec::as_slice).collect();
@@ -304,20 +324,108 @@ fn smoothing_spline_on_grid(
     refs: &[&[f64]],
     values: &lekalo::Points,
 ) -> Result<TensorGridSmoothingSpline> {
-    let n = dirs.len();
+    check_smoothing_space(a, dirs, "--smooth")?;
+    let lambdas = grid_weights(dirs, sm)?;
+    Ok(tensor_grid_smoothing_spline(
+        refs,
+        values.as_view(),
+        &lambdas,
+    )?)
+}
+
+/// The space of the grid's smoothing spline (cubic, a knot at every grid line) is the only one
+/// `--smooth` (and `--s` in shape) fits on: no knots, count, box or other degree.
+fn check_smoothing_space(a: &FitArgs, dirs: &[Direction], mode: &str) -> Result<()> {
     if a.ctrl_grid.is_some() || dirs.iter().any(|d| d.inner.is_some() || d.range.is_some()) {
-        return bad_input(
-            "--smooth on a grid fits the cubic smoothing spline with a knot at every grid line: \
-             drop --ctrl-grid, --bbox and --knots-u/--knots-v/--knots-in",
-        );
+        return bad_input(format!(
+            "{mode} on a grid fits the cubic smoothing spline with a knot at every grid line: \
+             drop --ctrl-grid, --bbox and --knots-u/--knots-v/--knots-in"
+        ));
     }
     if let Some(d) = dirs.iter().find(|d| d.degree != 3) {
         return bad_input(format!(
-            "--degree: --smooth on a grid fits cubic splines (the smoothing spline of each \
+            "--degree: {mode} on a grid fits cubic splines (the smoothing spline of each \
              direction), not degree {} in direction {}; drop --degree",
             d.degree, d.k
         ));
     }
+    Ok(())
+}
+
+/// The shape constraints of a fit in `n` variables: those of a surface's grid smoothed by
+/// `--smooth` or `--s` (`lekalo::fit::constrained_surface_grid_smoothing_spline`); refused
+/// with the reason for any other fit routed here.
+fn grid_shapes(a: &FitArgs, n: usize) -> Result<SurfaceShapeConstraints> {
+    if !a.shape_given() {
+        return Ok(SurfaceShapeConstraints::new());
+    }
+    if a.grid.is_some() && n == 2 && (a.smooth.is_some() || a.s.is_some()) {
+        return surface_shape_constraints(a);
+    }
+    if a.scattered && a.s.is_some() {
+        return bad_input(
+            "--s on scattered rows places FITPACK's knots (surfit) and keeps no shape \
+             constraints; to smooth scattered rows in shape give the net (--ctrl-grid NUxNV or \
+             --knots-u/--knots-v) with --penalty W instead of --s",
+        );
+    }
+    bad_input(format!(
+        "shape constraints keep surfaces z(u, v) (--grid NUxNV or --scattered rows u, v, z); a \
+         fit in {n} variables takes none: drop --increasing, --decreasing, --min, --max"
+    ))
+}
+
+/// A surface's grid smoothed in shape: the table `z(u, v)` the grid holds (rows `u, v, z`, or
+/// one value per node at `--params-u`, `--params-v`, as least squares in shape reads it), its
+/// smoothing spline that keeps `shapes` (`--smooth` with λ given or by GCV,
+/// `lekalo::fit::constrained_surface_grid_smoothing_spline`; or `--s S`, the weights scaled
+/// from GCV's until the residual is S, `lekalo::fit::constrained_surface_grid_smoothing_condition`),
+/// and the report of its residuals at the nodes.
+fn run_grid_in_shape(
+    a: &FitArgs,
+    dirs: &[Direction],
+    shapes: &SurfaceShapeConstraints,
+    (values, given, shape): (&lekalo::Points, Vec<Given>, &[usize]),
+    inputs: &[PathBuf],
+    cx: &Context,
+) -> Result<()> {
+    let g = a.grid.as_deref().unwrap_or_default();
+    let [gu, gv] = [0, 1].map(|k| given.get(k).cloned().flatten().map(|(_, t)| t));
+    let (uu, vv, z) = table_of_grid(values, (shape[0], shape[1]), gu, gv, g)?;
+    let f = match &a.smooth {
+        Some(sm) => {
+            check_smoothing_space(a, dirs, "--smooth")?;
+            let w = grid_weights(dirs, sm)?;
+            constrained_surface_grid_smoothing_spline(
+                z.as_view(),
+                (&uu, &vv),
+                [w[0], w[1]],
+                shapes,
+            )?
+        }
+        None => {
+            check_smoothing_space(a, dirs, "--s with shape constraints")?;
+            let target = a.s.unwrap_or_default();
+            constrained_surface_grid_smoothing_condition(z.as_view(), (&uu, &vv), target, shapes)?
+        }
+    };
+    let described: Vec<String> = (0..shapes.len()).map(|i| shapes.describe(i)).collect();
+    let extra = json!({ "lambda": f.lambdas, "constraints": described });
+    let net = [f.surface.net_size().0, f.surface.net_size().1];
+    let s = TensorBSpline::from_surface(&f.surface);
+    let mut fitted = vec![0.0; z.len()];
+    s.eval_grid(&[&uu, &vv], None, &mut fitted)?;
+    let residuals: Vec<f64> = fitted
+        .iter()
+        .zip(z.as_slice())
+        .map(|(f, y)| (f - y).abs())
+        .collect();
+    finish_with(a, &s, &net, &residuals, f.residual, Some(extra), inputs, cx)
+}
+
+/// The weights of `--smooth` for the directions of a grid: one for all or one per direction.
+fn grid_weights(dirs: &[Direction], sm: &str) -> Result<Vec<Lambda>> {
+    let n = dirs.len();
     let weights = smoothing_weights(sm)?;
     let lambdas = match weights.len() {
         1 => vec![weights[0]; n],
@@ -330,11 +438,7 @@ fn smoothing_spline_on_grid(
             ))
         }
     };
-    Ok(tensor_grid_smoothing_spline(
-        refs,
-        values.as_view(),
-        &lambdas,
-    )?)
+    Ok(lambdas)
 }
 
 /// A JSON number, or `null` for `±∞` and NaN (a GCV score within rounding of `0/0`).
@@ -668,12 +772,16 @@ fn shape_text(net: &[usize]) -> String {
 }
 
 /// The options of curve fits, refused in `N` variables (least squares with given knots only).
-fn refuse_curve_options(a: &FitArgs) -> Result<()> {
+fn refuse_curve_options(a: &FitArgs, in_shape: bool) -> Result<()> {
     let s_of_a_curve = a.s.is_some() && a.grid.is_none() && !a.scattered;
     let given: Vec<&str> = std::iter::once((s_of_a_curve, "--s"))
         .chain(a.curve_options())
-        // a grid is smoothed by --smooth (tensor_grid_smoothing_spline)
-        .filter(|&(on, name)| on && !(name == "--smooth" && a.grid.is_some()))
+        // a grid is smoothed by --smooth (tensor_grid_smoothing_spline); a surface's grid
+        // smoothed in shape keeps its constraints (read by `grid_shapes`)
+        .filter(|&(on, name)| {
+            on && !(name == "--smooth" && a.grid.is_some())
+                && !(name == "shape constraints" && in_shape)
+        })
         .map(|(_, name)| name)
         .collect();
     if given.is_empty() {

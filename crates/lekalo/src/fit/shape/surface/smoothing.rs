@@ -70,8 +70,9 @@ pub struct SurfaceGridSmoothing {
 ///
 /// # Errors
 /// The errors of [`tensor_grid_smoothing_spline`]; [`Error::Dimension`] for values that are not
-/// numbers; [`Error::NegativeSmoothing`] for a given `λ_a ≤ 0` or not finite (the constrained
-/// program needs the penalty in both directions); the constraint errors of
+/// numbers; [`Error::NegativeSmoothing`] for a given `λ_a < 0` or not finite,
+/// [`Error::InvalidArgument`] for `λ_a = 0` (the constrained program needs the penalty in both
+/// directions); the constraint errors of
 /// [`constrained_surface_grid_least_squares`](super::constrained_surface_grid_least_squares).
 pub fn constrained_surface_grid_smoothing_spline(
     values: PointsRef<'_>,
@@ -86,13 +87,19 @@ pub fn constrained_surface_grid_smoothing_spline(
     )?;
     for l in lambdas {
         if let Lambda::Given(l) = l {
-            if !(l > 0.0 && l.is_finite()) {
+            if !(l >= 0.0 && l.is_finite()) {
                 return Err(Error::NegativeSmoothing {
-                    what: What::of(
-                        Arg::Lambda,
-                        "λ (a shape-constrained smoothing spline needs λ > 0 in each direction)",
-                    ),
+                    what: Arg::Lambda.into(),
                     value: l,
+                });
+            }
+            if l == 0.0 {
+                // the space has two coefficients a direction more than the grid has lines: only
+                // the penalty makes the program's Hessian definite
+                return Err(Error::InvalidArgument {
+                    what: What::of(Arg::Lambda, "λ (penalty weight)"),
+                    reason: "0 with shape constraints: the spline with a knot at every grid                              line has more coefficients than the grid has nodes, and only the                              penalty decides between them; give λ > 0 in each direction (or                              GCV's)"
+                        .into(),
                 });
             }
         }

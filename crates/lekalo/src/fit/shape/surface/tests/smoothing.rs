@@ -234,7 +234,7 @@ fn what_cannot_be_done_is_refused_by_name() {
     let (u, v, z) = rippled_grid(8, 6);
     let values = PointsRef::from_flat(1, &z).unwrap();
     let c = increasing_u();
-    for l in [0.0, -1.0, f64::NAN] {
+    for l in [-1.0, f64::NAN] {
         let e = constrained_surface_grid_smoothing_spline(
             values,
             (&u, &v),
@@ -243,8 +243,19 @@ fn what_cannot_be_done_is_refused_by_name() {
         )
         .unwrap_err();
         assert!(matches!(e, Error::NegativeSmoothing { .. }), "{e}");
-        assert!(e.to_string().contains("λ > 0"), "{e}");
     }
+    // λ = 0 is interpolation's weight, which the constrained program cannot take: named, with
+    // the fix
+    let e = constrained_surface_grid_smoothing_spline(
+        values,
+        (&u, &v),
+        [Lambda::Given(0.0), Lambda::Gcv],
+        &c,
+    )
+    .unwrap_err();
+    assert!(matches!(e, Error::InvalidArgument { .. }), "{e}");
+    assert!(e.to_string().contains("give λ > 0"), "{e}");
+    assert_eq!(e.arg(), Some(crate::Arg::Lambda));
     let e = constrained_surface_grid_smoothing_condition(values, (&u, &v), -1.0, &c).unwrap_err();
     assert!(matches!(e, Error::NegativeSmoothing { .. }), "{e}");
     // points in space are not a table z(u, v)
