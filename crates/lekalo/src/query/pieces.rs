@@ -351,23 +351,34 @@ impl QueryCurve {
     /// Point (original coordinates) and derivatives with respect to the curve's parameter at
     /// global `t` (clamped to the domain): `order + 1` rows of `dim`, `order ≤ 2`.
     pub(crate) fn eval_global(&self, t: f64, order: usize, scratch: &mut Vec<f64>) -> Vec<f64> {
+        let mut res = vec![0.0; (order + 1) * self.dim];
+        self.eval_global_into(t, order, scratch, &mut res);
+        res
+    }
+
+    /// [`QueryCurve::eval_global`] into `out` (at least `(order + 1)·dim` long), without
+    /// allocating: the same values to the last bit.
+    pub(crate) fn eval_global_into(
+        &self,
+        t: f64,
+        order: usize,
+        scratch: &mut Vec<f64>,
+        out: &mut [f64],
+    ) {
         let k = self.piece_of(t);
         let s = self.local(k, t);
-        let mut out = vec![0.0; 3 * self.dim];
-        self.eval_local(k, s, order, scratch, &mut out);
+        self.eval_local(k, s, order, scratch, out);
         let (a, b) = self.spans[k];
         let h = b - a;
-        let mut res = vec![0.0; (order + 1) * self.dim];
         for d in 0..self.dim {
-            res[d] = self.centre[d] + self.scale * out[d];
+            out[d] = self.centre[d] + self.scale * out[d];
             if order >= 1 {
-                res[self.dim + d] = self.scale * out[self.dim + d] / h;
+                out[self.dim + d] = self.scale * out[self.dim + d] / h;
             }
             if order >= 2 {
-                res[2 * self.dim + d] = self.scale * out[2 * self.dim + d] / (h * h);
+                out[2 * self.dim + d] = self.scale * out[2 * self.dim + d] / (h * h);
             }
         }
-        res
     }
 
     /// Point at the parameter `t` (original coordinates).
@@ -527,20 +538,30 @@ pub(crate) fn bern_roots(p: &Bern, zero: f64) -> Vec<f64> {
     };
     while let Some((q, a, b, depth)) = stack.pop() {
         visited += 1;
-        let signs: Vec<i8> = q.0.iter().map(|&c| sign(c)).collect();
-        let nonzero: Vec<i8> = signs.iter().copied().filter(|&s| s != 0).collect();
-        let (first, last) = (signs[0], signs[signs.len() - 1]);
-        if nonzero.is_empty() {
+        // the signs of the coefficients, counted as they come (no allocation per interval):
+        // how many are not zero, and the changes between consecutive non-zero ones
+        let (first, last) = (sign(q.0[0]), sign(q.0[q.0.len() - 1]));
+        let (mut nonzero, mut changes, mut prev) = (0_usize, 0_usize, 0_i8);
+        for &c in &q.0 {
+            let s = sign(c);
+            if s != 0 {
+                if prev != 0 && s != prev {
+                    changes += 1;
+                }
+                prev = s;
+                nonzero += 1;
+            }
+        }
+        if nonzero == 0 {
             // zero within the threshold throughout: a cluster (merged with its neighbours below)
             clusters.push((a, b));
             continue;
         }
-        let changes = nonzero.windows(2).filter(|w| w[0] != w[1]).count();
         if changes == 1 && first != 0 && last != 0 {
             roots.push(bracketed(&q, a, b));
             continue;
         }
-        if changes == 0 && nonzero.len() == signs.len() {
+        if changes == 0 && nonzero == q.0.len() {
             continue;
         }
         if depth >= 52 || visited >= MAX_ROOT_NODES || b - a < 1e-15 {

@@ -73,6 +73,21 @@ struct Cand {
     d: f64,
 }
 
+/// The buffers of curve projections, kept between calls so that a caller projecting many
+/// points (a batch, or the gap tests of an intersection) allocates them once: the normalised
+/// query, an evaluation, the candidates, the search heap and the foot polynomial's coefficients.
+#[derive(Default)]
+pub(crate) struct ProjectScratch {
+    scratch: Vec<f64>,
+    q: Vec<f64>,
+    buf: Vec<f64>,
+    found: Vec<Cand>,
+    heap: BinaryHeap<ByBound<usize>>,
+    coef: Vec<f64>,
+    mag: Vec<f64>,
+    nodes: Vec<usize>,
+}
+
 pub(crate) fn check_query(what: impl Into<What>, point: &[f64], dim: usize) -> Result<()> {
     let what: What = what.into();
     if point.len() != dim {
@@ -88,9 +103,17 @@ pub(crate) fn check_query(what: impl Into<What>, point: &[f64], dim: usize) -> R
 impl QueryCurve {
     /// Normalised query point, refusing far queries.
     fn query(&self, point: &[f64]) -> Result<Vec<f64>> {
+        let mut q = Vec::new();
+        self.query_into(point, &mut q)?;
+        Ok(q)
+    }
+
+    /// [`QueryCurve::query`] into `q` (resized to the dimension).
+    fn query_into(&self, point: &[f64], q: &mut Vec<f64>) -> Result<()> {
         check_query("query point", point, self.dim)?;
-        let mut q = vec![0.0; self.dim];
-        self.normalise(point, &mut q);
+        q.clear();
+        q.resize(self.dim, 0.0);
+        self.normalise(point, q);
         let r = q.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
         if !(r <= MAX_QUERY_RANGE) {
             return Err(Error::QueryOutOfRange {
@@ -98,13 +121,21 @@ impl QueryCurve {
                 max: MAX_QUERY_RANGE,
             });
         }
-        Ok(q)
+        Ok(())
     }
 
     /// Bernstein coefficients of `g(s) = C'(s)·(C(s) − q)` on piece `k` (times `w³` for a
     /// rational piece, which keeps the sign) and a threshold under which a coefficient is zero
     /// to rounding.
-    fn foot_polynomial(&self, k: usize, q: &[f64]) -> (Bern, f64) {
+    /// The polynomial's coefficients are built in `c` (and `mag`), whose allocations are
+    /// taken and may be given back.
+    fn foot_polynomial(
+        &self,
+        k: usize,
+        q: &[f64],
+        c: &mut Vec<f64>,
+        mag: &mut Vec<f64>,
+    ) -> (Bern, f64) {
         let (dim, hd, n) = (self.dim, self.hd, self.degree);
         let piece = self.piece(k);
         if n == 0 {
@@ -113,8 +144,11 @@ impl QueryCurve {
         if !self.rational {
             // c_k = Σ_{i+j=k} C(n−1,i) C(n,j) / C(2n−1,k) · D_i·E_j, D_i = n ΔP_i, E_j = P_j − q
             let m = 2 * n - 1;
-            let mut c = vec![0.0; m + 1];
-            let mut mag = vec![0.0; m + 1];
+            let mut c = std::mem::take(c);
+            c.clear();
+            c.resize(m + 1, 0.0);
+            mag.clear();
+            mag.resize(m + 1, 0.0);
             for i in 0..n {
                 let wi = binom(n - 1, i) * n as f64;
                 for j in 0..=n {
@@ -205,30 +239,39 @@ impl QueryCurve {
     }
 
     /// Candidates on piece `k`: its ends and the polished roots of `g`.
-    fn piece_candidates(
-        &self,
-        k: usize,
-        q: &[f64],
-        scratch: &mut Vec<f64>,
-        buf: &mut [f64],
-        out: &mut Vec<Cand>,
-    ) {
+    fn piece_candidates(&self, k: usize, q: &[f64], w: &mut ProjectScratch) {
+        let (scratch, buf, out) = (&mut w.scratch, &mut w.buf[..], &mut w.found);
         for s in [0.0, 1.0] {
             let d = self.dist_at(k, s, q, scratch, buf);
             out.push(Cand { k, s, d });
         }
-        let (g, zero) = self.foot_polynomial(k, q);
+        let (g, zero) = self.foot_polynomial(k, q, &mut w.coef, &mut w.mag);
         for r in bern_roots(&g, zero) {
             out.push(self.polish(k, r, q, scratch, buf));
         }
+        // the coefficients' allocation, for the next piece
+        w.coef = g.0;
     }
 
     /// All candidates within `slack` of the least distance, by best-first search of the tree.
     fn candidates(&self, q: &[f64], slack: f64, scratch: &mut Vec<f64>) -> Vec<Cand> {
-        let mut buf = vec![0.0; 3 * self.dim];
+        let mut w = ProjectScratch {
+            scratch: std::mem::take(scratch),
+            ..ProjectScratch::default()
+        };
+        self.candidates_in(q, slack, &mut w);
+        *scratch = w.scratch;
+        w.found
+    }
+
+    /// [`QueryCurve::candidates`] into `w.found`, with `w`'s buffers.
+    fn candidates_in(&self, q: &[f64], slack: f64, w: &mut ProjectScratch) {
+        w.buf.clear();
+        w.buf.resize(3 * self.dim, 0.0);
+        w.found.clear();
         let mut best = f64::INFINITY;
-        let mut found: Vec<Cand> = Vec::new();
-        let mut heap = BinaryHeap::new();
+        let mut heap = std::mem::take(&mut w.heap);
+        heap.clear();
         heap.push(ByBound(box_distance(q, &self.nodes[0].bbox), 0_usize));
         // bounded: every node is pushed at most once
         while let Some(ByBound(lb, id)) = heap.pop() {
@@ -243,21 +286,21 @@ impl QueryCurve {
                     }
                 }
                 None => {
-                    let start = found.len();
-                    self.piece_candidates(node.lo, q, scratch, &mut buf, &mut found);
-                    for c in &found[start..] {
+                    let start = w.found.len();
+                    self.piece_candidates(node.lo, q, w);
+                    for c in &w.found[start..] {
                         best = best.min(c.d);
                     }
                 }
             }
         }
-        found.retain(|c| c.d <= best + slack);
-        found.sort_by(|a, b| {
+        w.heap = heap;
+        w.found.retain(|c| c.d <= best + slack);
+        w.found.sort_by(|a, b| {
             a.d.total_cmp(&b.d)
                 .then(a.k.cmp(&b.k))
                 .then(a.s.total_cmp(&b.s))
         });
-        found
     }
 
     fn to_projection(&self, c: Cand, scratch: &mut Vec<f64>) -> CurveProjection {
@@ -273,10 +316,98 @@ impl QueryCurve {
         }
     }
 
-    fn project_with(&self, point: &[f64], scratch: &mut Vec<f64>) -> Result<CurveProjection> {
-        let q = self.query(point)?;
-        let found = self.candidates(&q, 0.0, scratch);
-        Ok(self.to_projection(found[0], scratch))
+    fn project_with(&self, point: &[f64], w: &mut ProjectScratch) -> Result<CurveProjection> {
+        let c = self.closest_in(point, w)?;
+        Ok(self.to_projection(c, &mut w.scratch))
+    }
+
+    /// The closest candidate to `point`, with `w`'s buffers.
+    fn closest_in(&self, point: &[f64], w: &mut ProjectScratch) -> Result<Cand> {
+        let mut q = std::mem::take(&mut w.q);
+        let found = self
+            .query_into(point, &mut q)
+            .map(|()| self.candidates_in(&q, 0.0, w));
+        w.q = q;
+        found.map(|()| w.found[0])
+    }
+
+    /// Whether `point` is proven farther than `limit` (absolute, in the curve's units) from the
+    /// curve, without projecting it: a lower bound of its distance to each piece — the distance
+    /// to the box of the piece's control points, and for a planar curve the distance to the band
+    /// about the piece's chord that holds them (the fat line of Sederberg–Nishita 1990); the
+    /// piece lies in both, by the convex-hull property (positive weights) — over the piece tree,
+    /// whose boxes prune the pieces farther than the limit. A margin of rounding
+    /// (`1e-12` of the limit and `1e-13` of the curve's size) keeps a yes in agreement with
+    /// [`QueryCurve::project`]'s distance; a no means "not proven", not "within".
+    pub(crate) fn farther_than(&self, point: &[f64], limit: f64, w: &mut ProjectScratch) -> bool {
+        let lim = limit / self.scale * (1.0 + 1e-12) + 1e-13;
+        if !lim.is_finite() || self.query_into(point, &mut w.q).is_err() {
+            return false;
+        }
+        let (q, stack) = (&w.q, &mut w.nodes);
+        stack.clear();
+        stack.push(0);
+        while let Some(id) = stack.pop() {
+            let node = &self.nodes[id];
+            if box_distance(q, &node.bbox) > lim {
+                continue;
+            }
+            match node.children {
+                Some((a, b)) => stack.extend([a, b]),
+                None => {
+                    if !(self.dim == 2 && self.band_distance(node.lo, q) > lim) {
+                        return false;
+                    }
+                }
+            }
+        }
+        true
+    }
+
+    /// Distance (normalised) from the planar point `q` to the band about the chord of piece
+    /// `k` that holds its control points; 0 when the chord's ends coincide.
+    fn band_distance(&self, k: usize, q: &[f64]) -> f64 {
+        let (hd, n) = (self.hd, self.degree);
+        let piece = self.piece(k);
+        let cart = |i: usize| {
+            let w = if self.rational {
+                piece[i * hd + 2]
+            } else {
+                1.0
+            };
+            [piece[i * hd] / w, piece[i * hd + 1] / w]
+        };
+        let (a, b) = (cart(0), cart(n));
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let len = dx.hypot(dy);
+        if !(len > 0.0) {
+            return 0.0;
+        }
+        let nrm = [-dy / len, dx / len];
+        let (mut lo, mut hi) = (0.0_f64, 0.0_f64);
+        for i in 1..=n {
+            let p = cart(i);
+            let e = nrm[0] * (p[0] - a[0]) + nrm[1] * (p[1] - a[1]);
+            lo = lo.min(e);
+            hi = hi.max(e);
+        }
+        let e = nrm[0] * (q[0] - a[0]) + nrm[1] * (q[1] - a[1]);
+        (e - hi).max(lo - e).max(0.0)
+    }
+
+    /// The parameter and the distance of [`QueryCurve::project`], the same to the last bit,
+    /// with buffers kept by the caller (no allocation once they have grown): for callers that
+    /// only compare gaps.
+    ///
+    /// # Errors
+    /// As [`QueryCurve::project`].
+    pub(crate) fn project_reusing(
+        &self,
+        point: &[f64],
+        w: &mut ProjectScratch,
+    ) -> Result<(f64, f64)> {
+        let c = self.closest_in(point, w)?;
+        Ok((self.global(c.k, c.s), c.d * self.scale))
     }
 
     /// The closest point of the curve to `point` (the one with the smallest parameter among
@@ -298,7 +429,7 @@ impl QueryCurve {
     /// infinity; [`Error::QueryOutOfRange`] for a point more than [`MAX_QUERY_RANGE`] curve sizes
     /// away.
     pub fn project(&self, point: &[f64]) -> Result<CurveProjection> {
-        self.project_with(point, &mut Vec::new())
+        self.project_with(point, &mut ProjectScratch::default())
     }
 
     /// Every local minimum of the distance whose distance is within `tolerance` (absolute, in
@@ -373,7 +504,7 @@ impl QueryCurve {
         points
             .as_slice()
             .par_chunks_exact(self.dim)
-            .map_init(Vec::new, |scratch, p| self.project_with(p, scratch))
+            .map_init(ProjectScratch::default, |w, p| self.project_with(p, w))
             .collect()
     }
 

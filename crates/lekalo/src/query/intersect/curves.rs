@@ -2,7 +2,7 @@
 //! its solutions grouped into answers (`docs/theory/queries.md#intersections`).
 
 use super::super::pieces::{check_tolerance, dist, dot, QueryCurve};
-use super::super::project::CurveProjection;
+use super::super::project::ProjectScratch;
 use super::planar::{overlapping_pairs, PlaneNets, Raw, Search, Sub};
 use super::{Contact, CurveIntersection};
 use crate::error::{Error, Result};
@@ -241,31 +241,45 @@ impl QueryCurve {
         tolerance: f64,
     ) -> Vec<CurveIntersection> {
         raw.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.total_cmp(&y.1)));
-        let gap = |t: f64| -> (f64, CurveProjection) {
-            let p = self.point(t).unwrap_or_default();
-            match other.project(&p) {
-                Ok(pr) => (pr.distance, pr),
-                Err(_) => (
-                    f64::INFINITY,
-                    CurveProjection {
-                        t: 0.0,
-                        point: p,
-                        distance: f64::INFINITY,
-                    },
-                ),
+        let (lo, hi) = self.domain();
+        // the gap at `t` (the distance to `other`, by its global projection) and the foot's
+        // parameter there; infinite (and 0) outside the domain or where the projection fails.
+        // The projections reuse one set of buffers.
+        let projection =
+            std::cell::RefCell::new((ProjectScratch::default(), Vec::new(), vec![0.0; self.dim]));
+        let gap = |t: f64| -> (f64, f64) {
+            if !(t >= lo && t <= hi) {
+                return (f64::INFINITY, 0.0);
+            }
+            let (w, scratch, p) = &mut *projection.borrow_mut();
+            self.eval_global_into(t, 0, scratch, p);
+            match other.project_reusing(p, w) {
+                Ok((u, d)) => (d, u),
+                Err(_) => (f64::INFINITY, 0.0),
             }
         };
         // whether the gap at `t` is within `limit`: first from the foot point near `u` (an upper
-        // bound of the gap, so a yes is final), else by the global projection; with the foot's
+        // bound of the gap, so a yes is final), then from a lower bound of the distance to
+        // `other`'s pieces (so a no is final), else by the global projection; with the foot's
         // parameter, to start the next one from
         let scratch = std::cell::RefCell::new((Vec::new(), Vec::new()));
         let within = |t: f64, u: f64, limit: f64| -> (bool, f64) {
-            let (d, u) = self.near_gap(other, t, u, &mut scratch.borrow_mut());
+            let (d, u) = self.near_gap(other, t, u, limit, &mut scratch.borrow_mut());
             if d <= limit {
                 return (true, u);
             }
-            let (d, pr) = gap(t);
-            (d <= limit, if d.is_finite() { pr.t } else { u })
+            if !(t >= lo && t <= hi) {
+                return (false, u);
+            }
+            {
+                let (w, scratch, p) = &mut *projection.borrow_mut();
+                self.eval_global_into(t, 0, scratch, p);
+                if other.farther_than(p, limit, w) {
+                    return (false, u);
+                }
+            }
+            let (d, v) = gap(t);
+            (d <= limit, if d.is_finite() { v } else { u })
         };
         let at = |t: f64| self.point(t).unwrap_or_default();
         // the answers of one contact refined and classified from `(ta, tb)`
@@ -303,7 +317,6 @@ impl QueryCurve {
             }
         }
         groups.sort_by(|x, y| x[0].0.total_cmp(&y[0].0));
-        let (lo, hi) = self.domain();
         let mut out = Vec::new();
         for (gi, g) in groups.iter().enumerate() {
             let (mut a0, mut a1) = (g[0].0, g[g.len() - 1].0);
@@ -395,8 +408,8 @@ impl QueryCurve {
                 // one contact: the least gap, by golden-section search on [a0, a1] (80 steps),
                 // then refined on the tangency system
                 let t = golden_min(a0, a1, |t| gap(t).0);
-                let (_, pr) = gap(t);
-                out.extend(contact_points(t, pr.t));
+                let (_, u) = gap(t);
+                out.extend(contact_points(t, u));
                 continue;
             }
             let point = at(best.0);
@@ -426,12 +439,14 @@ impl QueryCurve {
     /// measured: the distance to the foot point of `A(t)` on `other` found by Newton's method on
     /// `(B(u) − A(t))·B'(u) = 0` from `u` (at most 6 steps, clamped to `other`'s domain; the
     /// nearest of its iterates). Any point of `other` bounds the gap from above, so a bound within
-    /// a limit needs no global projection. Infinite for `t` outside the domain.
+    /// a limit needs no global projection; the steps stop at the first iterate within `limit`
+    /// (the caller's question is answered). Infinite for `t` outside the domain.
     fn near_gap(
         &self,
         other: &QueryCurve,
         t: f64,
         u: f64,
+        limit: f64,
         bufs: &mut (Vec<f64>, Vec<f64>),
     ) -> (f64, f64) {
         let (lo, hi) = self.domain();
@@ -469,7 +484,7 @@ impl QueryCurve {
             if d < best.0 {
                 best = (d, u);
             }
-            if !(fp > 0.0) {
+            if d <= limit || !(fp > 0.0) {
                 break;
             }
             let next = (u - f / fp).clamp(blo, bhi);

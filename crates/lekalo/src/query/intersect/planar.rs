@@ -185,11 +185,12 @@ fn fat_line(net: &[f64], slack: f64) -> Option<([f64; 2], f64, f64, f64)> {
     Some((nrm, c, lo - slack, hi + slack))
 }
 
-/// The axis (unit chord) of a net and the half-angle of a cone about it that holds every
-/// difference `P_j − P_i` (`i < j`) of its Cartesian control points, hence every tangent of its
-/// sub-curve (a positive combination of those differences, polynomial or rational: Floater,
-/// "Derivatives of rational Bézier curves", CAGD 9, 1992). `None` when a difference points
-/// against the chord (no such cone under a right angle) or the end points coincide.
+/// The axis (unit chord) of a net and the tangent of the half-angle of a cone about it that
+/// holds every difference `P_j − P_i` (`i < j`) of its Cartesian control points, hence every
+/// tangent of its sub-curve (a positive combination of those differences, polynomial or
+/// rational: Floater, "Derivatives of rational Bézier curves", CAGD 9, 1992). `None` when a
+/// difference points against the chord (no such cone under a right angle) or the end points
+/// coincide.
 fn tangent_cone(net: &[f64]) -> Option<([f64; 2], f64)> {
     let n = net.len() / H - 1;
     let (a, b) = (cart(net, 0), cart(net, n));
@@ -212,7 +213,7 @@ fn tangent_cone(net: &[f64]) -> Option<([f64; 2], f64)> {
                 }
                 return None;
             }
-            half = half.max(across.atan2(along));
+            half = half.max(across / along);
         }
     }
     Some((axis, half))
@@ -220,14 +221,20 @@ fn tangent_cone(net: &[f64]) -> Option<([f64; 2], f64)> {
 
 /// True when two sub-curves cross at most once: their tangent cones, taken as double cones
 /// (lines), are apart. Two crossings would make the chord between them a direction of both.
+///
+/// With the half-angles `α`, `β` (tangents `a`, `b`) and the angle `θ ≤ π/2` between the axes
+/// (`tan θ = |sin| / |cos|`), the cones are apart when `θ > α + β`: impossible when
+/// `α + β ≥ π/2` (`ab ≥ 1`), otherwise, tan being increasing below `π/2`,
+/// `|sin|·(1 − ab) > (a + b)·|cos|` (the tangent addition formula, cleared of its
+/// denominators; no arc tangents).
 fn at_most_one_crossing(x: &[f64], y: &[f64]) -> bool {
-    let (Some((ex, hx)), Some((ey, hy))) = (tangent_cone(x), tangent_cone(y)) else {
+    let (Some((ex, a)), Some((ey, b))) = (tangent_cone(x), tangent_cone(y)) else {
         return false;
     };
-    let between = (ex[0] * ey[1] - ex[1] * ey[0])
-        .abs()
-        .atan2((ex[0] * ey[0] + ex[1] * ey[1]).abs());
-    between > hx + hy
+    let sin = (ex[0] * ey[1] - ex[1] * ey[0]).abs();
+    let cos = (ex[0] * ey[0] + ex[1] * ey[1]).abs();
+    let ab = a * b;
+    ab < 1.0 && sin * (1.0 - ab) > (a + b) * cos
 }
 
 /// True when the control points of `net` leave the fat line of `other` (widened by `slack`)

@@ -4,6 +4,7 @@
 //! as two crossings, a touch or a near miss.
 
 use super::super::pieces::{dist, dot, QueryCurve};
+use super::super::project::ProjectScratch;
 use super::super::surface::QuerySurface;
 use super::{Contact, TOUCH_RTOL};
 
@@ -15,20 +16,21 @@ const ORDER_PROBE: f64 = 1e-3;
 /// Highest order of contact reported (the probes cannot tell higher ones apart).
 const MAX_ORDER: u32 = 6;
 
-/// Point and first and second derivatives of a curve at global `t` (original coordinates).
-struct Jet {
-    p: Vec<f64>,
-    d1: Vec<f64>,
-    d2: Vec<f64>,
+/// Point and first and second derivatives of a curve at global `t` (original coordinates),
+/// viewed in `buf` (`3·dim` long, reused between steps).
+struct Jet<'a> {
+    p: &'a [f64],
+    d1: &'a [f64],
+    d2: &'a [f64],
 }
 
-fn jet(c: &QueryCurve, t: f64, scratch: &mut Vec<f64>) -> Jet {
-    let v = c.eval_global(t, 2, scratch);
+fn jet<'a>(c: &QueryCurve, t: f64, scratch: &mut Vec<f64>, buf: &'a mut [f64]) -> Jet<'a> {
+    c.eval_global_into(t, 2, scratch, buf);
     let d = c.dim;
     Jet {
-        p: v[..d].to_vec(),
-        d1: v[d..2 * d].to_vec(),
-        d2: v[2 * d..3 * d].to_vec(),
+        p: &buf[..d],
+        d1: &buf[d..2 * d],
+        d2: &buf[2 * d..3 * d],
     }
 }
 
@@ -67,13 +69,17 @@ impl QueryCurve {
     /// best point (least residual) is returned.
     pub(super) fn refine_contact(&self, other: &QueryCurve, ta: f64, tb: f64) -> (f64, f64) {
         let mut scratch = Vec::new();
+        let (mut bufa, mut bufb) = (vec![0.0; 3 * self.dim], vec![0.0; 3 * other.dim]);
+        let mut r = vec![0.0; self.dim];
         let (mut s, mut u) = (ta, tb);
         let mut best = (f64::INFINITY, s, u);
         for _ in 0..REFINE_STEPS {
-            let a = jet(self, s, &mut scratch);
-            let b = jet(other, u, &mut scratch);
-            let r: Vec<f64> = a.p.iter().zip(&b.p).map(|(x, y)| x - y).collect();
-            let (la, lb) = (dot(&a.d1, &a.d1).sqrt(), dot(&b.d1, &b.d1).sqrt());
+            let a = jet(self, s, &mut scratch, &mut bufa);
+            let b = jet(other, u, &mut scratch, &mut bufb);
+            for (r, (x, y)) in r.iter_mut().zip(a.p.iter().zip(b.p)) {
+                *r = x - y;
+            }
+            let (la, lb) = (dot(a.d1, a.d1).sqrt(), dot(b.d1, b.d1).sqrt());
             if !(la > 0.0 && lb > 0.0) {
                 break;
             }
@@ -81,20 +87,17 @@ impl QueryCurve {
             let (f, j) = if self.dim == 2 {
                 let tng = [a.d1[0] / la, a.d1[1] / la];
                 (
-                    [dot(&tng, &r), cross2(&a.d1, &b.d1)],
+                    [dot(&tng, &r), cross2(a.d1, b.d1)],
                     [
-                        [la, -dot(&tng, &b.d1)],
-                        [cross2(&a.d2, &b.d1), cross2(&a.d1, &b.d2)],
+                        [la, -dot(&tng, b.d1)],
+                        [cross2(a.d2, b.d1), cross2(a.d1, b.d2)],
                     ],
                 )
             } else {
-                let ab = -dot(&a.d1, &b.d1);
+                let ab = -dot(a.d1, b.d1);
                 (
-                    [dot(&r, &a.d1), -dot(&r, &b.d1)],
-                    [
-                        [la * la + dot(&r, &a.d2), ab],
-                        [ab, lb * lb - dot(&r, &b.d2)],
-                    ],
+                    [dot(&r, a.d1), -dot(&r, b.d1)],
+                    [[la * la + dot(&r, a.d2), ab], [ab, lb * lb - dot(&r, b.d2)]],
                 )
             };
             // the residual in units of length: the cross product over |B'|, the gradient over
@@ -138,9 +141,10 @@ impl QueryCurve {
         let mut scratch = Vec::new();
         let (mut s, mut u) = (ta, tb);
         let mut best = (f64::INFINITY, s, u);
+        let (mut a, mut b) = ([0.0; 4], [0.0; 4]);
         for _ in 0..REFINE_STEPS {
-            let a = self.eval_global(s, 1, &mut scratch);
-            let b = other.eval_global(u, 1, &mut scratch);
+            self.eval_global_into(s, 1, &mut scratch, &mut a);
+            other.eval_global_into(u, 1, &mut scratch, &mut b);
             let r = [a[0] - b[0], a[1] - b[1]];
             let gap = r[0].hypot(r[1]);
             if gap < best.0 {
@@ -170,9 +174,14 @@ impl QueryCurve {
         let (lo, hi) = self.domain();
         let h = ORDER_PROBE * (hi - lo);
         let sign = if t + 2.0 * h <= hi { 1.0 } else { -1.0 };
-        let gap = |x: f64| {
-            let p = self.point(clamp_to(self, x)).unwrap_or_default();
-            other.project(&p).map_or(f64::INFINITY, |pr| pr.distance)
+        // the projections reuse one set of buffers (the same distances as `project`'s)
+        let (mut w, mut scratch, mut p) =
+            (ProjectScratch::default(), Vec::new(), vec![0.0; self.dim]);
+        let mut gap = |x: f64| {
+            self.eval_global_into(clamp_to(self, x), 0, &mut scratch, &mut p);
+            other
+                .project_reusing(&p, &mut w)
+                .map_or(f64::INFINITY, |(_, d)| d)
         };
         let (g1, g2) = (gap(t + sign * h), gap(t + 2.0 * sign * h));
         if !(g1 > 0.0 && g2.is_finite()) {
