@@ -1,7 +1,8 @@
 """lekalo.jax.arc_length and closest_parameter: values lekalo's (`CurveQuery.length`,
 `CurveQuery.project`), Jacobians from jacfwd and jacrev (eager, under jit and vmap) against
-central finite differences of those values to 1e-7 relative, and the errors. The mathematics
-is tested in the core (crates/lekalo/src/derivatives/geometry_tests.rs)."""
+central finite differences of those values to 1e-7 relative, in the control points, the
+points and the knots, and the errors. The mathematics is tested in the core
+(crates/lekalo/src/derivatives/geometry_tests.rs, geometry_knots_tests.rs)."""
 
 import numpy as np
 import pytest
@@ -116,9 +117,94 @@ def test_closest_parameter_vmap_one_point_ends_and_errors():
         jax.block_until_ready(f(ctrl, np.array([np.nan, 0.0])))
     with pytest.raises(lekalo.InputError, match=r"\(\.\.\., 2\)"):
         f(ctrl, np.zeros(3))
-    with pytest.raises(NotImplementedError, match="knots"):
-        jax.grad(lambda k: arc_length(k, ctrl, 3))(KNOTS)
     with pytest.raises(NotImplementedError, match="first derivatives"):
         jax.hessian(lambda c: arc_length(KNOTS, c, 3))(ctrl)
     with pytest.raises(lekalo.InputError, match="knots"):
         arc_length(KNOTS[:-1], ctrl, 3)
+
+
+# The knot moves the knot derivatives are checked along: each interior knot alone, and each
+# clamped end with its four copies (a single end copy cannot move both ways and stay sorted).
+MOVES = [np.eye(len(KNOTS))[k] for k in range(4, 7)] + [
+    np.r_[np.ones(4), np.zeros(7)],
+    np.r_[np.zeros(7), np.ones(4)],
+]
+
+
+def along_moves(f, knots, h=1e-6):
+    """Central differences of ``f`` along each of ``MOVES``: shape ``f().shape + (moves,)``."""
+    cols = [(np.asarray(f(knots + h * e)) - np.asarray(f(knots - h * e))) / (2 * h) for e in MOVES]
+    return np.stack(cols, axis=-1)
+
+
+def length_on(knots, ctrl):
+    return np.array(lekalo.CurveQuery(lekalo.BSplineCurve(3, knots, np.asarray(ctrl))).length())
+
+
+def params_on(knots, ctrl, x):
+    q = lekalo.CurveQuery(lekalo.BSplineCurve(3, knots, np.asarray(ctrl)))
+    return np.asarray(q.project(x)[0], dtype=float)
+
+
+@pytest.mark.parametrize("dim", [1, 2, 3])
+@pytest.mark.parametrize("mode", ["jacfwd", "jacrev"])
+def test_arc_length_knot_jacobians_match_central_differences(dim, mode):
+    ctrl = control(dim)
+    f = lambda k, c: arc_length(k, c, 3)  # noqa: E731
+    fd_k = along_moves(lambda k: length_on(k, ctrl), KNOTS)
+    fd_c = central(plain_length, ctrl, 1e-5)
+    for jit in (False, True):
+        jac = getattr(jax, mode)(f, argnums=(0, 1))
+        jac = jax.jit(jac) if jit else jac
+        jk, jc = jac(KNOTS, ctrl)
+        assert_rel(np.stack([np.asarray(jk) @ e for e in MOVES]), fd_k, f"{mode} knots, jit={jit}")
+        assert_rel(jc, fd_c, f"{mode} control points with the knots, jit={jit}")
+        # the knots outside the domain's ends move with them: no entry of their own
+        assert np.all(np.asarray(jk)[[0, 1, 2, 8, 9, 10]] == 0.0)
+
+
+def test_arc_length_knot_gradient_under_vmap():
+    ctrl = control()
+    batch = np.stack([KNOTS, KNOTS * 2.0 - 0.5])
+    f = lambda k: arc_length(k, ctrl, 3)  # noqa: E731
+    grads = jax.jit(jax.vmap(jax.grad(f)))(batch)
+    tangents = jax.vmap(lambda k, t: jax.jvp(f, (k,), (t,))[1], in_axes=(0, None))(batch, MOVES[0])
+    for i in range(2):
+        fd = along_moves(lambda k: length_on(k, ctrl), batch[i])
+        assert_rel(np.stack([np.asarray(grads[i]) @ e for e in MOVES]), fd, "vmap(grad) knots")
+        assert_rel(tangents[i], fd[0], "vmap(jvp) knots")
+    text = jax.jit(jax.grad(f)).lower(KNOTS).as_text()
+    assert "lekalo_arc_length_vjp" in text and "callback" not in text
+
+
+@pytest.mark.parametrize("mode", ["jacfwd", "jacrev"])
+def test_closest_parameter_knot_jacobians_match_central_differences(mode):
+    for dim in (2, 3):
+        ctrl = control(dim)
+        # near the curve, and beyond its start (the closest point the start, moving with it)
+        x = np.vstack([points_near(ctrl), np.asarray(ctrl[0]) - 30.0])
+        f = lambda k, c, p: closest_parameter(k, c, p, 3)  # noqa: E731
+        fd_k = along_moves(lambda k: params_on(k, ctrl, x), KNOTS)
+        for jit in (False, True):
+            jac = getattr(jax, mode)(f, argnums=(0, 1, 2))
+            jac = jax.jit(jac) if jit else jac
+            jk, jc, jx = jac(KNOTS, ctrl, x)
+            got = np.stack([np.asarray(jk) @ e for e in MOVES], axis=-1)
+            assert_rel(got, fd_k, f"{mode} knots, dim {dim}, jit={jit}")
+            assert_rel(jc, central(lambda c: plain_params(c, x), ctrl, 1e-5), "control points")
+            assert_rel(jx, central(lambda p: plain_params(ctrl, p), x, 1e-5), "points")
+        assert float(got[-1, 3]) == 1.0, "beyond the start: the start's tangent"
+
+
+def test_closest_parameter_knot_gradient_under_vmap():
+    ctrl = control()
+    x = points_near(ctrl)
+    f = lambda k, p: closest_parameter(k, ctrl, p, 3)  # noqa: E731
+    per = jax.jit(jax.vmap(jax.grad(f), in_axes=(None, 0)))(KNOTS, x)
+    for i in range(4):
+        fd = along_moves(lambda k: params_on(k, ctrl, x[i][None])[0], KNOTS)
+        assert_rel(np.stack([np.asarray(per[i]) @ e for e in MOVES]), fd, "vmap(grad) knots")
+    with pytest.raises(RUNTIME_ERRORS, match="not finite|NaN|non-finite"):
+        bad = KNOTS.copy()
+        bad[5] = np.nan
+        jax.block_until_ready(jax.grad(f)(bad, x[0]))

@@ -1,6 +1,6 @@
 """Two queries of a B-spline curve as JAX functions: ``arc_length`` and ``closest_parameter`` of
-``lekalo.jax``, differentiable where they are smooth with respect to the control points (and
-the query points), by lekalo's XLA FFI targets (values, JVP and VJP compiled into the program,
+``lekalo.jax``, differentiable where they are smooth with respect to the knots, the control
+points (and the query points), by lekalo's XLA FFI targets (values, JVP and VJP compiled into the program,
 no host callback; ``lekalo::derivatives::ArcLengthGradient`` and ``ClosestParameters``,
 ``docs/theory/derivatives.md``, "Arc length and closest points")."""
 
@@ -23,9 +23,13 @@ def _closest_out_shape(res):
 
 # values, JVP and VJP as the FFI targets ``lekalo_arc_length_*`` and
 # ``lekalo_closest_parameter_*`` (``xla_ffi/geometry.rs``)
-_LENGTH = Kernel("arc_length", "lekalo_arc_length", ("control",), _length_out_shape)
+# (the knots are among the differentiable arrays, a kind of their own)
+_LENGTH = Kernel("arc_length", "lekalo_arc_length", ("knots", "control"), _length_out_shape)
 _CLOSEST = Kernel(
-    "closest_parameter", "lekalo_closest_parameter", ("control", "point"), _closest_out_shape
+    "closest_parameter",
+    "lekalo_closest_parameter",
+    ("knots", "control", "point"),
+    _closest_out_shape,
 )
 
 
@@ -59,11 +63,17 @@ def arc_length(knots, control_points, degree):
     Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
     respect to ``control_points``: ``∂L/∂P_j = ∫ N'_j(t) C'(t)/|C'(t)| dt`` on the nodes of
     the quadrature that computes ``L`` (where ``C' = 0``, a cusp, the length is not
-    differentiable and the node adds nothing). ``knots`` and ``degree`` are constants.
+    differentiable and the node adds nothing); and with respect to ``knots``
+    (``lekalo::derivatives::ArcLengthGradient::with_knots``): the interior knots by the knot
+    derivative of ``C'`` on the same nodes, the domain's ends ``knots[degree]`` and
+    ``knots[n]`` by the length's invariance under an affine map of the knots. The
+    ``degree`` knots outside each end move with it: their entries of the gradient are zero,
+    and a tangent that moves a clamped end with all its copies is read from
+    ``knots[degree]`` (``knots[n]``). ``degree`` is a constant.
     """
     name = "arc_length"
     degree, knots, ctrl = _curve_args(name, knots, control_points, degree)
-    return _LENGTH((("degree", degree),), (knots,), (ctrl,))
+    return _LENGTH((("degree", degree),), (), (knots, ctrl))
 
 
 def closest_parameter(knots, control_points, x, degree):
@@ -75,9 +85,17 @@ def closest_parameter(knots, control_points, x, degree):
     respect to ``control_points`` and ``x`` where the closest point is unique and isolated, by
     the implicit function theorem on ``g(t) = (C(t) - x)·C'(t) = 0``:
     ``ṫ = (C'·ẋ - Σ_j (N_j C' + N'_j (C - x))·Ṗ_j) / (|C'|² + (C - x)·C'')``; at an end of the
-    domain the parameter stays there (derivative 0). A point at the curve's centre of
-    curvature (no isolated minimum of the distance) raises lekalo's error.
-    ``knots`` and ``degree`` are constants.
+    domain, or at a corner of the curve (a knot where ``C'`` jumps), the parameter stays
+    there (derivative 0). A point at the curve's centre of curvature (no isolated minimum of
+    the distance) raises lekalo's error.
+
+    Differentiable with respect to ``knots`` too
+    (``lekalo::derivatives::ClosestParameters::with_knots``): ``ṫ = ℓ(t) − (C'·∂C/∂τ·r +
+    (C - x)·∂C'/∂τ·r) / g'`` with ``ℓ`` the affine map that moves the domain's ends as
+    ``knots[degree]`` and ``knots[n]`` and ``r`` the rest of the knot tangent, on the interior
+    knots; at an end the parameter moves with that end, at a corner with the corner's knot.
+    The ``degree`` knots outside each end move with it (their gradient entries are zero).
+    ``degree`` is a constant.
     """
     name = "closest_parameter"
     degree, knots, ctrl = _curve_args(name, knots, control_points, degree)
@@ -92,5 +110,5 @@ def closest_parameter(knots, control_points, x, degree):
         raise InputError(
             f"lekalo.jax.{name}: x of shape {x.shape} holds no point; give at least one"
         )
-    out = _CLOSEST((("degree", degree),), (knots,), (ctrl, x.reshape(-1, dim)))
+    out = _CLOSEST((("degree", degree),), (), (knots, ctrl, x.reshape(-1, dim)))
     return out.reshape(x.shape[:-1])

@@ -20,10 +20,10 @@
   ``points`` at ``params`` on the knots ``t``, differentiable with respect to the data and the
   parameters;
 - ``arc_length(knots, control_points, degree)``: a B-spline curve's length, differentiable with
-  respect to the control points;
+  respect to the knots and the control points;
 - ``closest_parameter(knots, control_points, x, degree)``: the parameters of the curve's
-  closest points to the points ``x``, differentiable with respect to the control points and
-  ``x``.
+  closest points to the points ``x``, differentiable with respect to the knots, the control
+  points and ``x``.
 
 The evaluations are differentiable, in forward and reverse mode, with respect to the control
 points, the parameters and the knots (the interior ones: the ``degree + 1`` first and last
@@ -58,8 +58,9 @@ Requirements and limits, each with a clear error:
 - float64 only: enable it with ``jax.config.update("jax_enable_x64", True)`` first;
 - first derivatives: a second derivative (``jax.hessian``, ``jacfwd(jacrev(...))``) raises
   ``NotImplementedError``;
-- derivatives with respect to the knots of ``interpolate``, the fits, ``arc_length`` and
-  ``closest_parameter`` raise ``NotImplementedError``: pass them as constants;
+- derivatives with respect to the knots of ``interpolate`` and the fits raise
+  ``NotImplementedError``: pass them as constants (``arc_length`` and ``closest_parameter``
+  are differentiable in their knots);
 - parameters must lie in the domain (and NURBS weights be positive): otherwise the error
   raised inside lekalo's FFI target reaches the caller carrying lekalo's
   message, which names the parameter and the domain (eagerly and under ``jit``), as

@@ -5,15 +5,16 @@
 //! | target | arguments | attributes | results |
 //! |---|---|---|---|
 //! | `lekalo_arc_length_eval` | knots `(nk,)`, control `(n, dim)` | `degree` | `L` `()` |
-//! | `lekalo_arc_length_jvp` | knots, control, [`Ṗ` `(n, dim)`] | `degree`, `with_control` | `L̇` `()` |
-//! | `lekalo_arc_length_vjp` | knots, control, `L̄` `()` | `degree`, `with_control` | [`P̄` `(n, dim)`] |
+//! | `lekalo_arc_length_jvp` | knots, control, [`τ̇` `(nk,)`], [`Ṗ` `(n, dim)`] | `degree`, `with_knots`, `with_control` | `L̇` `()` |
+//! | `lekalo_arc_length_vjp` | knots, control, `L̄` `()` | `degree`, `with_knots`, `with_control` | [`τ̄` `(nk,)`], [`P̄` `(n, dim)`] |
 //! | `lekalo_closest_parameter_eval` | knots, control, x `(m, dim)` | `degree` | `t` `(m,)` |
-//! | `lekalo_closest_parameter_jvp` | knots, control, x, [`Ṗ`], [`ẋ` `(m, dim)`] | `degree`, `with_control`, `with_point` | `ṫ` `(m,)` |
-//! | `lekalo_closest_parameter_vjp` | knots, control, x, `t̄` `(m,)` | `degree`, `with_control`, `with_point` | [`P̄`], [`x̄`] |
+//! | `lekalo_closest_parameter_jvp` | knots, control, x, [`τ̇`], [`Ṗ`], [`ẋ` `(m, dim)`] | `degree`, `with_knots`, `with_control`, `with_point` | `ṫ` `(m,)` |
+//! | `lekalo_closest_parameter_vjp` | knots, control, x, `t̄` `(m,)` | `degree`, `with_knots`, `with_control`, `with_point` | [`τ̄`], [`P̄`], [`x̄`] |
 //!
 //! The bracketed buffers are present when the attribute of the same name is true; every buffer
 //! may have the same leading batch axes. Each batch element builds its curve
-//! ([`BSplineCurve::new`], validated) and runs the core's kernel once.
+//! ([`BSplineCurve::new`], validated) and runs the core's kernel once (built with the knot
+//! derivatives, `with_knots`, only when the knots' tangent or cotangent is asked for).
 
 use lekalo::derivatives::{ArcLengthGradient, ClosestParameters};
 use lekalo::{BSplineCurve, Points};
@@ -72,15 +73,22 @@ pub(super) mod arc_length {
     /// Knots and control points, with their core axes.
     const RESIDUALS: [(&str, usize); 2] = [("knots", 1), ("control points", 2)];
 
+    /// The gradient of batch element `b`, in the knots too when `knots`.
     fn gradient(
         degree: usize,
         res: &[In<'_>],
         sizes: &[usize],
         dim: usize,
         b: usize,
+        knots: bool,
     ) -> Result<ArcLengthGradient, String> {
         let c = curve(degree, res, sizes, dim, b)?;
-        ArcLengthGradient::new(&c).map_err(|e| e.to_string())
+        if knots {
+            ArcLengthGradient::with_knots(&c)
+        } else {
+            ArcLengthGradient::new(&c)
+        }
+        .map_err(|e| e.to_string())
     }
 
     fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
@@ -99,43 +107,68 @@ pub(super) mod arc_length {
 
     fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
         let degree = count_attr(call, "degree")?;
-        let present = flags(call, ["with_control"]);
+        let present = flags(call, ["with_knots", "with_control"]);
         let Call { args, rets, .. } = call;
-        let (res, [dc]) = tangents(args, 2, present)?;
+        let (res, [dk, dc]) = tangents(args, 2, present)?;
         let (batch, sizes, dim) = layout(res, &RESIDUALS)?;
         let out = single(rets)?;
         batch.expect("length tangent", out.dims, 0, 1)?;
-        let Some(dc) = dc else {
+        if dk.is_none() && dc.is_none() {
             out.data.fill(0.0);
             return Ok(());
-        };
-        batch.expect("control-point tangent", dc.dims, 2, sizes[1])?;
+        }
+        if let Some(a) = dk {
+            batch.expect("knot tangent", a.dims, 1, sizes[0])?;
+        }
+        if let Some(a) = dc {
+            batch.expect("control-point tangent", a.dims, 2, sizes[1])?;
+        }
         for b in 0..batch.count {
-            let grad = gradient(degree, res, &sizes, dim, b)?;
-            out.data[b] = grad
-                .jvp(element(dc.data, sizes[1], b))
-                .map_err(|e| e.to_string())?;
+            let grad = gradient(degree, res, &sizes, dim, b, dk.is_some())?;
+            let mut sum = 0.0;
+            if let Some(a) = dc {
+                sum += grad
+                    .jvp(element(a.data, sizes[1], b))
+                    .map_err(|e| e.to_string())?;
+            }
+            if let Some(a) = dk {
+                sum += grad
+                    .knot_jvp(element(a.data, sizes[0], b))
+                    .map_err(|e| e.to_string())?;
+            }
+            out.data[b] = sum;
         }
         Ok(())
     }
 
     fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
         let degree = count_attr(call, "degree")?;
-        let present = flags(call, ["with_control"]);
+        let present = flags(call, ["with_knots", "with_control"]);
         let Call { args, rets, .. } = call;
         let (res, [g]) = tangents(args, 2, [true])?;
         let g = g.ok_or("no cotangent")?;
         let (batch, sizes, dim) = layout(res, &RESIDUALS)?;
         batch.expect("length cotangent", g.dims, 0, 1)?;
-        let [gc] = cotangents(rets, present)?;
-        let Some(gc) = gc else {
+        let [mut gk, mut gc] = cotangents(rets, present)?;
+        if let Some(a) = &gk {
+            batch.expect("knot cotangent", a.dims, 1, sizes[0])?;
+        }
+        if let Some(a) = &gc {
+            batch.expect("control-point cotangent", a.dims, 2, sizes[1])?;
+        }
+        if gk.is_none() && gc.is_none() {
             return Ok(());
-        };
-        batch.expect("control-point cotangent", gc.dims, 2, sizes[1])?;
+        }
         for b in 0..batch.count {
-            let grad = gradient(degree, res, &sizes, dim, b)?;
-            let v = grad.vjp(g.data[b]).map_err(|e| e.to_string())?;
-            element_mut(gc.data, sizes[1], b).copy_from_slice(&v);
+            let grad = gradient(degree, res, &sizes, dim, b, gk.is_some())?;
+            if let Some(a) = gc.as_mut() {
+                let v = grad.vjp(g.data[b]).map_err(|e| e.to_string())?;
+                element_mut(a.data, sizes[1], b).copy_from_slice(&v);
+            }
+            if let Some(a) = gk.as_mut() {
+                let v = grad.knot_vjp(g.data[b]).map_err(|e| e.to_string())?;
+                element_mut(a.data, sizes[0], b).copy_from_slice(&v);
+            }
         }
         Ok(())
     }
@@ -160,15 +193,23 @@ pub(super) mod closest_parameter {
     /// Knots, control points and the points, with their core axes.
     const RESIDUALS: [(&str, usize); 3] = [("knots", 1), ("control points", 2), ("x", 2)];
 
+    /// The closest parameters of batch element `b`, with their knot derivatives when `knots`.
     fn closest(
         degree: usize,
         res: &[In<'_>],
         sizes: &[usize],
         dim: usize,
         b: usize,
+        knots: bool,
     ) -> Result<ClosestParameters, String> {
         let c = curve(degree, res, sizes, dim, b)?;
-        ClosestParameters::new(&c, element(res[2].data, sizes[2], b)).map_err(|e| e.to_string())
+        let x = element(res[2].data, sizes[2], b);
+        if knots {
+            ClosestParameters::with_knots(&c, x)
+        } else {
+            ClosestParameters::new(&c, x)
+        }
+        .map_err(|e| e.to_string())
     }
 
     fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
@@ -193,11 +234,14 @@ pub(super) mod closest_parameter {
 
     fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
         let degree = count_attr(call, "degree")?;
-        let present = flags(call, ["with_control", "with_point"]);
+        let present = flags(call, ["with_knots", "with_control", "with_point"]);
         let Call { args, rets, .. } = call;
-        let (res, [dc, dx]) = tangents(args, 3, present)?;
+        let (res, [dk, dc, dx]) = tangents(args, 3, present)?;
         let (batch, sizes, dim) = layout(res, &RESIDUALS)?;
         let m = sizes[2] / dim.max(1);
+        if let Some(a) = dk {
+            batch.expect("knot tangent", a.dims, 1, sizes[0])?;
+        }
         if let Some(a) = dc {
             batch.expect("control-point tangent", a.dims, 2, sizes[1])?;
         }
@@ -207,13 +251,21 @@ pub(super) mod closest_parameter {
         let out = single(rets)?;
         batch.expect("parameter tangent", out.dims, 1, m)?;
         for b in 0..batch.count {
-            let cp = closest(degree, res, &sizes, dim, b)?;
-            let got = cp
+            let cp = closest(degree, res, &sizes, dim, b, dk.is_some())?;
+            let mut got = cp
                 .jvp(
                     dc.map(|a| element(a.data, sizes[1], b)),
                     dx.map(|a| element(a.data, sizes[2], b)),
                 )
                 .map_err(|e| e.to_string())?;
+            if let Some(a) = dk {
+                let k = cp
+                    .knot_jvp(element(a.data, sizes[0], b))
+                    .map_err(|e| e.to_string())?;
+                for (o, v) in got.iter_mut().zip(&k) {
+                    *o += v;
+                }
+            }
             element_mut(out.data, m, b).copy_from_slice(&got);
         }
         Ok(())
@@ -221,14 +273,17 @@ pub(super) mod closest_parameter {
 
     fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
         let degree = count_attr(call, "degree")?;
-        let present = flags(call, ["with_control", "with_point"]);
+        let present = flags(call, ["with_knots", "with_control", "with_point"]);
         let Call { args, rets, .. } = call;
         let (res, [g]) = tangents(args, 3, [true])?;
         let g = g.ok_or("no cotangent")?;
         let (batch, sizes, dim) = layout(res, &RESIDUALS)?;
         let m = sizes[2] / dim.max(1);
         batch.expect("parameter cotangent", g.dims, 1, m)?;
-        let [mut gc, mut gx] = cotangents(rets, present)?;
+        let [mut gk, mut gc, mut gx] = cotangents(rets, present)?;
+        if let Some(a) = &gk {
+            batch.expect("knot cotangent", a.dims, 1, sizes[0])?;
+        }
         if let Some(a) = &gc {
             batch.expect("control-point cotangent", a.dims, 2, sizes[1])?;
         }
@@ -236,7 +291,13 @@ pub(super) mod closest_parameter {
             batch.expect("point cotangent", a.dims, 2, sizes[2])?;
         }
         for b in 0..batch.count {
-            let cp = closest(degree, res, &sizes, dim, b)?;
+            let cp = closest(degree, res, &sizes, dim, b, gk.is_some())?;
+            if let Some(a) = gk.as_mut() {
+                let v = cp
+                    .knot_vjp(element(g.data, m, b))
+                    .map_err(|e| e.to_string())?;
+                element_mut(a.data, sizes[0], b).copy_from_slice(&v);
+            }
             let (c, x) = cp
                 .vjp(element(g.data, m, b), gc.is_some(), gx.is_some())
                 .map_err(|e| e.to_string())?;

@@ -13,9 +13,9 @@
 //! - `fits`: the least-squares fit on given knots and the smoothing spline with a given `λ`,
 //!   and their JVP and VJP with respect to the data (`lekalo::derivatives::LeastSquaresFit`,
 //!   `SmoothingFit`);
-//! - `geometry`: a B-spline curve's arc length (with respect to the control points) and the
-//!   parameters of its closest points to given points (with respect to the control points and
-//!   the points), with their JVP and VJP (`lekalo::derivatives::ArcLengthGradient`,
+//! - `geometry`: a B-spline curve's arc length (with respect to the knots and the control
+//!   points) and the parameters of its closest points to given points (with respect to the
+//!   knots, the control points and the points), with their JVP and VJP (`lekalo::derivatives::ArcLengthGradient`,
 //!   `ClosestParameters`);
 //! - `surface`: tensor-product B-spline surfaces, with respect to the knots, the net and
 //!   `(u, v)`;

@@ -10,7 +10,12 @@
 //!   function theorem: `ṫ = −(∂g/∂P · Ṗ + ∂g/∂x · ẋ) / g'(t*)` with `∂g/∂P_j = N_j C' +
 //!   N'_j (C − x)`, `∂g/∂x = −C'` and `g' = |C'|² + (C − x)·C''`. At an end of the domain the
 //!   closest point stays at the end under a small change (the distance grows into the domain):
-//!   the derivative is zero there.
+//!   the derivative is zero there, and likewise at a corner of the curve (a knot where `C'`
+//!   jumps), where the distance has a kink.
+//! - both with respect to the knots ([`ArcLengthGradient::with_knots`],
+//!   [`ClosestParameters::with_knots`]): `geometry_knots.rs`, the domain's ends by the queries'
+//!   behaviour under an affine map of the knots, the interior knots by the knot derivatives of
+//!   `C` and of its derivative curve `C'`; `geometry_knots_tests.rs` its tests.
 
 use super::checks::{check_input, check_len};
 use super::curve::{combine, PointBasis};
@@ -38,6 +43,8 @@ use crate::query::{QueryCurve, DEFAULT_LENGTH_RTOL};
 pub struct ArcLengthGradient {
     length: f64,
     gradient: Vec<f64>,
+    /// `∂L/∂τ`, when built by [`ArcLengthGradient::with_knots`].
+    knot_gradient: Option<Vec<f64>>,
 }
 
 impl ArcLengthGradient {
@@ -49,6 +56,12 @@ impl ArcLengthGradient {
     /// # Errors
     /// As [`QueryCurve::from_bspline`] and [`crate::QueryCurve::arc_length`].
     pub fn new(curve: &BSplineCurve) -> Result<Self> {
+        Ok(Self::build(curve, false)?.0)
+    }
+
+    /// [`ArcLengthGradient::new`]; with `nodes`, also the quadrature's nodes `t` and the
+    /// cotangents `weight · T(t)` of `C'(t)` there (`nodes × dim`), for the knot gradient.
+    fn build(curve: &BSplineCurve, nodes: bool) -> Result<(Self, Vec<f64>, Vec<f64>)> {
         let q = QueryCurve::from_bspline(curve)?;
         let table = q.arc_length(DEFAULT_LENGTH_RTOL)?;
         let (p, dim) = (curve.degree(), curve.dim());
@@ -58,6 +71,7 @@ impl ArcLengthGradient {
         let mut basis = PointBasis::new(p);
         let mut d = vec![0.0; dim];
         let mut failed = None;
+        let (mut ts, mut cot) = (Vec::new(), Vec::new());
         table.for_each_node(|t, weight| {
             let span = match cursor.find(t) {
                 Ok(s) => s,
@@ -71,6 +85,11 @@ impl ArcLengthGradient {
             let first = basis.at(knots, p, span, t);
             combine(ctrl, dim, first, basis.slopes(), &mut d);
             let speed = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if nodes {
+                ts.push(t);
+                let s = if speed > 0.0 { weight / speed } else { 0.0 };
+                cot.extend(d.iter().map(|x| s * x));
+            }
             if speed > 0.0 {
                 let s = weight / speed;
                 for (k, &nk) in basis.slopes().iter().enumerate() {
@@ -84,10 +103,12 @@ impl ArcLengthGradient {
         if let Some(e) = failed {
             return Err(e);
         }
-        Ok(ArcLengthGradient {
+        let g = ArcLengthGradient {
             length: table.total(),
             gradient,
-        })
+            knot_gradient: None,
+        };
+        Ok((g, ts, cot))
     }
 
     /// The length.
@@ -167,8 +188,12 @@ pub struct ClosestParameters {
     tangent: Vec<f64>,
     /// `C(t*) − x`, `m × dim`.
     offset: Vec<f64>,
-    /// `1/g'(t*)`, 0 at an end of the domain.
+    /// `1/g'(t*)`, 0 at an end of the domain and at a corner.
     inverse: Vec<f64>,
+    /// The first and last index of the knot at a corner `t*` lies on.
+    corners: Vec<Option<(usize, usize)>>,
+    /// The curve and its derivative curve, when built by [`ClosestParameters::with_knots`].
+    knots: Option<Box<knots::ClosestKnots>>,
 }
 
 impl ClosestParameters {
@@ -199,10 +224,13 @@ impl ClosestParameters {
             tangent: vec![0.0; m * dim],
             offset: vec![0.0; m * dim],
             inverse: Vec::with_capacity(m),
+            knots: None,
+            corners: Vec::with_capacity(m),
         };
         let mut cursor = curve.knots().span_cursor(p);
         let mut basis = PointBasis::new(p);
         let mut at = vec![0.0; dim];
+        let mut corner_basis = (PointBasis::new(p), vec![0.0; dim], vec![0.0; dim]);
         for (i, proj) in found.iter().enumerate() {
             let t = proj.t;
             let first = basis.at(knots, p, cursor.find(t)?, t);
@@ -213,7 +241,8 @@ impl ClosestParameters {
             for ((rc, a), x) in r.iter_mut().zip(&at).zip(pts.point(i)) {
                 *rc = a - x;
             }
-            let inverse = if t <= lo || t >= hi {
+            let corner = corner_at(curve, &mut corner_basis, t);
+            let inverse = if t <= lo || t >= hi || corner.is_some() {
                 0.0
             } else {
                 let second = curve.eval_derivatives(t, 2)?;
@@ -237,6 +266,7 @@ impl ClosestParameters {
             cp.basis.extend_from_slice(basis.values());
             cp.slopes.extend_from_slice(basis.slopes());
             cp.inverse.push(inverse);
+            cp.corners.push(corner);
         }
         Ok(cp)
     }
@@ -341,10 +371,46 @@ impl ClosestParameters {
     }
 }
 
+/// Where `t` is an interior knot of multiplicity `μ ≥ p` at which `C'` jumps (a corner of the
+/// curve), the first and last index of its copies: a closest point there stays on the corner
+/// under small changes (the distance has a kink, not a smooth minimum, in `t`).
+fn corner_at(
+    curve: &BSplineCurve,
+    (basis, left, right): &mut (PointBasis, Vec<f64>, Vec<f64>),
+    t: f64,
+) -> Option<(usize, usize)> {
+    let (p, dim, n) = (curve.degree(), curve.dim(), curve.control_points().len());
+    let (knots, ctrl) = (curve.knots().as_slice(), curve.control_points().as_slice());
+    let first = knots[p + 1..n].partition_point(|&k| k < t) + p + 1;
+    let last = knots[p + 1..n].partition_point(|&k| k <= t) + p;
+    if first > last || last + 1 - first < p {
+        return None;
+    }
+    let f = basis.at(knots, p, first - 1, t);
+    combine(ctrl, dim, f, basis.slopes(), left);
+    let f = basis.at(knots, p, last, t);
+    combine(ctrl, dim, f, basis.slopes(), right);
+    let size = dot(left, left).max(dot(right, right)).sqrt();
+    let gap: f64 = left
+        .iter()
+        .zip(right.iter())
+        .map(|(a, b)| (a - b) * (a - b))
+        .sum::<f64>()
+        .sqrt();
+    (gap > 1e-9 * size).then_some((first, last))
+}
+
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
+#[path = "geometry_knots.rs"]
+mod knots;
+
 #[cfg(test)]
 #[path = "geometry_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "geometry_knots_tests.rs"]
+mod knots_tests;

@@ -43,7 +43,8 @@
 //!   data on flat buffers: the fits' control points bit for bit, and `fitting.rs`'s JVP and VJP.
 //! - `geometry.rs`: [`ArcLengthGradient`] and [`ClosestParameters`], the derivatives of a
 //!   B-spline curve's arc length (with respect to the control points) and of the parameters of
-//!   its closest points to given points (with respect to the control points and the points).
+//!   its closest points to given points (with respect to the control points and the points);
+//!   `geometry_knots.rs` (a child module of it) the same two with respect to the knots.
 //! - `tensor.rs`: the same three for [`crate::TensorBSpline`] in `N` directions, at points of
 //!   `N` coordinates.
 //! - `tensor_nurbs.rs`: the same three for [`crate::TensorNurbs`], with respect to the net, the
