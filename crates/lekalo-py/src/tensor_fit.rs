@@ -3,19 +3,22 @@
 //! FITPACK's knots or with a penalty weight per direction, and the design matrix (`docs/theory/tensor.md`). Parsing and conversion
 //! only; the fits are the library's.
 
-use lekalo::fit::Lambda;
+use lekalo::fit::{
+    constrained_surface_grid_smoothing_condition, constrained_surface_grid_smoothing_spline, Lambda,
+};
 use lekalo::tensor::tensor_design_matrix as lk_design_matrix;
 use lekalo::{
     tensor_grid_gcv_score as lk_tensor_grid_gcv_score, tensor_grid_least_squares,
     tensor_grid_smoothing, tensor_grid_smoothing_spline, tensor_scattered_least_squares_with,
     tensor_scattered_penalized_least_squares, tensor_scattered_smoothing, Arg, KnotLimit,
-    KnotVector, PointsRef, RankDeficiency, ScatteredSmoothingOptions,
+    KnotVector, PointsRef, RankDeficiency, ScatteredSmoothingOptions, TensorBSpline,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 
 use crate::convert::{floats, vec_array, FloatArray};
 use crate::error::{argument, bad, lib_err, named};
+use crate::shape::SurfaceShapeArgs;
 use crate::tensor::{axes_arg, degrees_or_cubic, grid_values, PyTensorBSpline};
 
 /// Knot vectors `t` (one 1-D array per variable) for the fits: validated, `t[a]` named in the
@@ -412,6 +415,16 @@ fn lambdas_arg(lam: Option<&Bound<'_, PyAny>>, n: usize) -> PyResult<Vec<Lambda>
 /// report)`: `report["lam"]` the weights used, `"gcv"` the GCV score, `"residual"` the residual
 /// sum of squares, `"trace"` the smoother's trace. One axis gives `fit_smoothing`'s spline.
 ///
+/// A table `z(u, v)` (two axes, one value a node) may keep shapes, on the whole domain or on
+/// boxes of it, with the keywords of `fit_surface_grid` (`increasing`, `decreasing`, `min`,
+/// `max`; `docs/theory/fitting.md#shape-constrained-smoothing-of-surfaces`): the spline then
+/// minimises the same penalised objective over the surfaces that keep them
+/// (`constrained_surface_grid_smoothing_spline`; a weight of GCV is the unconstrained
+/// spline's, and `λ = 0` is refused). With shapes, `s` asks for the residual `s` instead of
+/// weights (`constrained_surface_grid_smoothing_condition`: GCV's weights scaled together);
+/// `lam` must then be `None`. A constrained fit's report has `"gcv"` and `"trace"` `None` (they
+/// are the unconstrained smoother's).
+///
 /// >>> import numpy as np, lekalo
 /// >>> x, y = np.linspace(0, 1, 12), np.linspace(0, 2, 9)
 /// >>> z = np.add.outer(x, 3 * y) + 0.5
@@ -419,32 +432,92 @@ fn lambdas_arg(lam: Option<&Bound<'_, PyAny>>, n: usize) -> PyResult<Vec<Lambda>
 /// >>> bool(np.allclose(s([[0.3, 1.1]]), 0.3 + 3.3 + 0.5))
 /// True
 #[pyfunction]
-#[pyo3(signature = (axes, values, lam = None))]
+#[pyo3(signature = (axes, values, lam = None, *, s = None, increasing = None, decreasing = None, min = None, max = None))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_tensor_grid_smoothing_spline<'py>(
     py: Python<'py>,
     axes: &Bound<'py, PyAny>,
     values: &Bound<'py, PyAny>,
     lam: Option<&Bound<'py, PyAny>>,
+    s: Option<f64>,
+    increasing: Option<&Bound<'py, PyAny>>,
+    decreasing: Option<&Bound<'py, PyAny>>,
+    min: Option<&Bound<'py, PyAny>>,
+    max: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyTensorBSpline, Bound<'py, PyDict>)> {
+    let shapes = SurfaceShapeArgs {
+        increasing,
+        decreasing,
+        min,
+        max,
+    }
+    .constraints()?;
     let lists = axes_arg(axes, "axes")?;
     let lambdas = lambdas_arg(lam, lists.len())?;
     let va = floats(values, "values")?;
     let (pts, trailing) = grid_values(&va, &lists)?;
     let refs: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
-    let f = py
-        .detach(|| tensor_grid_smoothing_spline(&refs, pts, &lambdas))
-        .map_err(|e| match e {
-            lekalo::Error::NegativeSmoothing { .. } => named("lam", &e),
-            other => fit_err(other, "axes"),
-        })?;
+    let smoothing_err = |e: lekalo::Error| match e.arg() {
+        Some(Arg::Lambda) => named("lam", &e),
+        Some(Arg::S) => named("s", &e),
+        _ => fit_err(e, "axes"),
+    };
     let report = PyDict::new(py);
-    report.set_item("lam", f.lambdas)?;
-    report.set_item("gcv", f.gcv)?;
+    if shapes.is_empty() {
+        if s.is_some() {
+            return Err(bad(
+                "s: the residual target on this space is for shapes (increasing, decreasing, \
+                 min, max); without them give lam, or use fit_tensor_grid_smoothing(axes, \
+                 values, s) for the fewest knots whose residual is s"
+                    .into(),
+            ));
+        }
+        let f = py
+            .detach(|| tensor_grid_smoothing_spline(&refs, pts, &lambdas))
+            .map_err(smoothing_err)?;
+        report.set_item("lam", f.lambdas)?;
+        report.set_item("gcv", f.gcv)?;
+        report.set_item("residual", f.residual)?;
+        report.set_item("trace", f.trace)?;
+        return Ok((
+            PyTensorBSpline {
+                inner: f.spline,
+                trailing,
+            },
+            report,
+        ));
+    }
+    if refs.len() != 2 {
+        return Err(bad(format!(
+            "increasing, decreasing, min, max: shapes are kept by a table z(u, v) of two axes, \
+             not {}; drop them",
+            refs.len()
+        )));
+    }
+    if s.is_some() && lam.is_some() {
+        return Err(bad(
+            "lam, s: give one: the weights, or the residual s they are scaled to".into(),
+        ));
+    }
+    let (uu, vv) = (refs[0], refs[1]);
+    let f = py
+        .detach(|| match s {
+            Some(s) => constrained_surface_grid_smoothing_condition(pts, (uu, vv), s, &shapes),
+            None => constrained_surface_grid_smoothing_spline(
+                pts,
+                (uu, vv),
+                [lambdas[0], lambdas[1]],
+                &shapes,
+            ),
+        })
+        .map_err(smoothing_err)?;
+    report.set_item("lam", f.lambdas.to_vec())?;
+    report.set_item("gcv", py.None())?;
     report.set_item("residual", f.residual)?;
-    report.set_item("trace", f.trace)?;
+    report.set_item("trace", py.None())?;
     Ok((
         PyTensorBSpline {
-            inner: f.spline,
+            inner: TensorBSpline::from_surface(&f.surface),
             trailing,
         },
         report,

@@ -103,3 +103,57 @@ def test_shapes_on_boxes_hold_there_only():
         fit(min=(0.0, 0.5))
     with pytest.raises(lekalo.InputError, match="on a box"):
         fit(increasing=("u", (0.0, 1.0)))
+
+
+def dense_tensor(s):
+    fu, fv = np.meshgrid(FINE, FINE, indexing="ij")
+    return s(np.column_stack([fu.ravel(), fv.ravel()])).reshape(101, 101)
+
+
+def test_grid_smoothing_spline_keeps_shapes():
+    free, r0 = lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, lam=[1e-5, None])
+    assert (np.diff(dense_tensor(free), axis=0) < -1e-3).any()
+    s, r = lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, lam=[1e-5, None], increasing="u", max=1.6)
+    assert isinstance(s, lekalo.TensorBSpline)
+    z = dense_tensor(s)
+    assert (np.diff(z, axis=0) >= -1e-12).all()
+    assert z.max() <= 1.6 + 1e-12
+    # GCV's weight is the unconstrained spline's; the residual rises
+    assert r["lam"] == pytest.approx(r0["lam"], rel=0, abs=0)
+    assert r["residual"] > r0["residual"]
+    assert r["gcv"] is None and r["trace"] is None
+    # the residual reported is the spline's at the nodes
+    nodes = s(np.column_stack([UU.ravel(), VV.ravel()])).reshape(Z.shape)
+    assert r["residual"] == pytest.approx(((nodes - Z) ** 2).sum(), rel=1e-12)
+
+
+def test_grid_smoothing_inactive_shapes_change_nothing():
+    z = 1.0 + UU + UU * VV + 0.3 * VV + 0.003 * np.sin(2.3 * (12 * I + J))
+    free, r0 = lekalo.fit_tensor_grid_smoothing_spline([U, V], z, lam=[1e-3, 1e-2])
+    s, r = lekalo.fit_tensor_grid_smoothing_spline([U, V], z, lam=[1e-3, 1e-2], increasing=True, min=0.5)
+    np.testing.assert_allclose(dense_tensor(s), dense_tensor(free), rtol=0, atol=1e-12)
+    assert r["residual"] == r0["residual"]
+
+
+def test_grid_smoothing_condition_in_shape():
+    _, gcv = lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, increasing="u")
+    target = 2.0 * gcv["residual"]
+    s, r = lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, s=target, increasing="u")
+    assert abs(r["residual"] - target) <= 1e-3 * target
+    assert (np.diff(dense_tensor(s), axis=0) >= -1e-12).all()
+    # the weights keep GCV's ratio
+    assert r["lam"][0] / r["lam"][1] == pytest.approx(gcv["lam"][0] / gcv["lam"][1], rel=1e-12)
+
+
+def test_grid_smoothing_refusals_name_the_argument():
+    with pytest.raises(lekalo.InputError, match="lam"):
+        lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, lam=0.0, increasing="u")
+    with pytest.raises(lekalo.InputError, match="give one"):
+        lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, lam=1e-3, s=1.0, increasing="u")
+    with pytest.raises(lekalo.InputError, match="s:"):
+        lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, s=1.0)
+    with pytest.raises(lekalo.InputError, match="give s ≥"):
+        lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, s=1e-9, max=0.0)
+    w = np.linspace(0, 1, 5)
+    with pytest.raises(lekalo.InputError, match="two axes"):
+        lekalo.fit_tensor_grid_smoothing_spline([U, V, w], np.zeros((16, 12, 5)), increasing="u")

@@ -965,7 +965,15 @@ def fit_tensor_grid_smoothing(
     axes: Sequence[ArrayLike], values: ArrayLike, s: float, k: Optional[Union[int, Sequence[int]]] = None, *, bbox: Optional[Sequence[Tuple[float, float]]] = None
 ) -> Tuple[TensorBSpline, float, Optional[float]]: ...
 def fit_tensor_grid_smoothing_spline(
-    axes: Sequence[ArrayLike], values: ArrayLike, lam: Optional[Union[float, Sequence[Optional[float]]]] = None
+    axes: Sequence[ArrayLike],
+    values: ArrayLike,
+    lam: Optional[Union[float, Sequence[Optional[float]]]] = None,
+    *,
+    s: Optional[float] = None,
+    increasing: Optional[SurfaceMonotone] = None,
+    decreasing: Optional[SurfaceMonotone] = None,
+    min: Optional[SurfaceBound] = None,
+    max: Optional[SurfaceBound] = None,
 ) -> Tuple[TensorBSpline, Dict[str, Any]]: ...
 def tensor_grid_gcv_score(
     axes: Sequence[ArrayLike], values: ArrayLike, lam: Union[float, Sequence[float]]
