@@ -23,6 +23,7 @@
 //! | IGES lines, arcs, conics, parametric splines, paths, composite curves, swept, analytic and bounded-plane surfaces (100–122, 190–198) as exact NURBS | yes | — | [`read_iges`] |
 //! | IGES trimmed and bounded surfaces (144, 143 with 142, 141 boundaries) as faces; faces written as 144 | yes | yes | [`read_iges_faces`], [`IgesWriter::add_faces`] |
 //! | OBJ: tessellated surfaces with normals, polylines | — | yes | [`grid_to_obj`] |
+//! | a CAD model's meshed faces and faces of triangles as one mesh with its vertices' normals | — | — | [`join_cad_mesh`] |
 //!
 //! Outputs are written atomically ([`write_atomic`]) and never over an input.
 //!
@@ -51,7 +52,7 @@ use cad::{iges, step, step_read};
 use envelope::{
     analysis, face_json, flat, intersections, json_write, object, object_ext, shape, tensor_json,
 };
-use mesh::{mesh_files, obj};
+use mesh::{cad_mesh, mesh_files, obj};
 use plot::{figure_check, layout, palette, png, surface_plot, svg, wireframe};
 use points::{npy, npz, points_in, tensor_npz, text_points};
 use tables::{numfmt, samples, surface_samples};
@@ -63,6 +64,7 @@ pub use atomic::{
     strip_bom, strip_bom_str, utf8_text, write_atomic, write_atomic_seek, write_atomic_send,
     write_atomic_stream, write_atomic_with, WriteOptions, WriteSeek, DEFAULT_MAX_INPUT_BYTES,
 };
+pub use cad_mesh::{join_cad_mesh, CadMesh};
 pub use error::{IoError, IoResult, Limit, Location};
 pub use face_json::{face_to_json_line, read_face};
 pub use figure_check::check_svg;

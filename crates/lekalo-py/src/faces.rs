@@ -5,15 +5,15 @@
 
 use lekalo::topology::TrimRegion;
 use lekalo_io::{Shape, StepFace};
-use numpy::{PyArray1, PyArrayMethods};
+use numpy::{PyArray1, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::exceptions::PyUserWarning;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 
 use crate::convert::IntArg;
-use crate::convert::{array, points_into_array, uv_args};
+use crate::convert::{array, floats, points_into_array, uv_args};
 use crate::curves::curve_to_py;
-use crate::error::{io_err, lib_err};
+use crate::error::{bad, io_err, lib_err};
 use crate::surfaces::surface_to_py;
 
 /// A face of a CAD model: a surface trimmed by an outer loop and inner loops (holes). Each edge
@@ -496,31 +496,60 @@ pub(crate) fn write_step(
     lekalo_io::write_atomic(&path, text.as_bytes(), &[]).map_err(io_err)
 }
 
-/// The vertices and triangles of a mesh of faces, and the faces not meshed with the reasons.
-type MeshedFaces<'py> = (Bound<'py, PyAny>, Bound<'py, PyAny>, Vec<(usize, String)>);
+/// The vertices, triangles and vertex normals of a mesh of faces, and the faces not meshed
+/// with the reasons.
+type MeshedFaces<'py> = (
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+    Option<Bound<'py, PyAny>>,
+    Vec<(usize, String)>,
+);
 
 /// Meshes faces together within ``tolerance`` (in the model's units), as ``lekalo mesh`` does
-/// with a face JSON Lines file: ``(vertices, triangles, failures)``, the faces that can be
-/// meshed as one mesh (an ``(n, 3)`` float array and an ``(m, 3)`` uint32 array, the faces
-/// meeting at the same points along their shared edges) and, for each face that cannot,
-/// ``(index, reason)`` with its index in ``faces``. Edges without a pcurve get one by projection
-/// first, as ``Face.with_projected_pcurves(tolerance)``. Each face is meshed once and a face
-/// that fails leaves the others as they are without it (``lekalo::topology::mesh_faces_each``;
-/// docs/theory/topology.md, "Faces that cannot be meshed"). A face whose proved deviation
-/// bound stays above the tolerance (refinement stopped at its limit) is in the mesh, and a
+/// with a STEP file: ``(vertices, triangles, normals, failures)``, the faces that can be meshed
+/// as one mesh (an ``(n, 3)`` float64 array and an ``(m, 3)`` uint32 array, the faces meeting
+/// at the same points along their shared edges), the unit normal of each vertex (``(n, 3)``
+/// float64) and, for each face that cannot, ``(index, reason)`` with its index in ``faces``.
+///
+/// A face's normals are its surface's exact ``S_u × S_v`` at each vertex, turned with the face's
+/// sense, so on the side its triangles turn about; at a pole, where that is undefined, the mean
+/// of the normals inside the vertex's triangles (``lekalo::query::Mesh::surface_normals``).
+/// ``tessellated``: faces of triangles as ``read_step(path, faces=True)["tessellated"]`` gives
+/// them (dicts with ``"vertices"`` ``(k, 3)``, ``"triangles"`` ``(j, 3)`` integers 0-based,
+/// ``"normals"`` ``(k, 3)`` or ``None``; ``"id"`` optional), joined after the meshed faces with
+/// their triangles as given and their normals made unit. A vertex without a normal has
+/// ``(0, 0, 0)``: one of a face of triangles whose file gives none, or a copy of a pole that no
+/// triangle uses; ``normals`` is ``None`` when no vertex has one. The mesh,
+/// normals and order are those ``lekalo mesh FILE -o mesh.obj`` writes
+/// (``lekalo_io::join_cad_mesh``).
+///
+/// Edges without a pcurve get one by projection first, as
+/// ``Face.with_projected_pcurves(tolerance)``. Each face is meshed once and a face that fails
+/// leaves the others as they are without it (``lekalo::topology::mesh_faces_each``;
+/// docs/theory/topology.md, "Faces that cannot be meshed"). A face whose proved deviation bound
+/// stays above the tolerance (refinement stopped at its limit) is in the mesh, and a
 /// ``UserWarning`` names it (its index), its bound and the tolerance that would do; so does a
 /// face whose trims were repaired (``Face.check_trims``). A face whose loops do not bound one
 /// region of its surface's domain is among the failures, its reason naming the loop. Raises
 /// ``ValueError`` for a tolerance that is not positive and finite, or too small for the faces'
-/// sizes together.
+/// sizes together, and for a face of triangles that does not hold together (naming its place
+/// in ``tessellated``).
 #[pyfunction]
+#[pyo3(signature = (faces, tolerance, *, tessellated = None))]
 pub(crate) fn mesh_faces<'py>(
     py: Python<'py>,
     faces: Vec<Bound<'py, PyFace>>,
     tolerance: f64,
+    tessellated: Option<Vec<Bound<'py, PyAny>>>,
 ) -> PyResult<MeshedFaces<'py>> {
     let list: Vec<&lekalo::Face> = faces.iter().map(|f| &f.get().inner.face).collect();
-    let (m, failures, coarse) = py
+    let triangulations = tessellated
+        .unwrap_or_default()
+        .iter()
+        .enumerate()
+        .map(|(k, d)| triangulation(k, d))
+        .collect::<PyResult<Vec<_>>>()?;
+    let (joined, failures, coarse) = py
         .detach(|| {
             let mut ready = Vec::with_capacity(list.len());
             let mut failures = Vec::new();
@@ -530,12 +559,9 @@ pub(crate) fn mesh_faces<'py>(
                     Err(e) => failures.push((k, e.to_string())),
                 }
             }
-            let r = lekalo::topology::mesh_faces_each(
-                &ready.iter().map(|(_, f)| f).collect::<Vec<_>>(),
-                tolerance,
-            )?;
+            let ready_faces: Vec<&lekalo::Face> = ready.iter().map(|(_, f)| f).collect();
+            let r = lekalo::topology::mesh_faces_each(&ready_faces, tolerance)?;
             failures.extend(r.failures.iter().map(|(i, e)| (ready[*i].0, e.to_string())));
-            failures.sort_by_key(|(k, _)| *k);
             // bounds above the tolerance, then trims repaired before meshing
             let coarse: Vec<(usize, String)> = r
                 .above_tolerance
@@ -543,7 +569,9 @@ pub(crate) fn mesh_faces<'py>(
                 .map(|(i, e)| (ready[*i].0, e.to_string()))
                 .chain(r.repairs.iter().map(|(i, x)| (ready[*i].0, x.to_string())))
                 .collect();
-            Ok::<_, lekalo::Error>((r.join()?, failures, coarse))
+            failures.sort_by_key(|(k, _)| *k);
+            let joined = lekalo_io::join_cad_mesh(Some(&r), &ready_faces, &triangulations)?;
+            Ok::<_, lekalo::Error>((joined, failures, coarse))
         })
         .map_err(lib_err)?;
     // a face whose proved bound stayed above the tolerance is kept, with a warning (the CLI
@@ -556,10 +584,101 @@ pub(crate) fn mesh_faces<'py>(
             1,
         )?;
     }
+    let m = joined.mesh;
+    let n = m.vertices.len();
+    let normals = if joined.normals.is_empty() {
+        None
+    } else {
+        let flat: Vec<f64> = joined
+            .normals
+            .iter()
+            .flat_map(|v| v.unwrap_or([0.0; 3]))
+            .collect();
+        Some(array(py, flat, &[n, 3])?)
+    };
     let nt = m.triangles.len();
     let tri: Vec<u32> = m.triangles.iter().flatten().copied().collect();
     let tri = PyArray1::from_vec(py, tri).reshape([nt, 3])?.into_any();
-    Ok((points_into_array(py, m.vertices)?, tri, failures))
+    Ok((points_into_array(py, m.vertices)?, tri, normals, failures))
+}
+
+/// A face of triangles from a dict of ``read_step``'s ``"tessellated"`` (item `k`): its
+/// vertices, triangles and normals read as arrays; their consistency is checked by
+/// `lekalo_io::join_cad_mesh`.
+fn triangulation(k: usize, d: &Bound<'_, PyAny>) -> PyResult<lekalo_io::StepTriangulation> {
+    let what = |key: &str| format!("tessellated[{k}]['{key}']");
+    let item = |key: &str| -> PyResult<Bound<'_, PyAny>> {
+        d.get_item(key).map_err(|_| {
+            bad(format!(
+                "tessellated[{k}]: no '{key}'; give the faces of triangles as \
+                 read_step(path, faces=True)[\"tessellated\"] gives them"
+            ))
+        })
+    };
+    let rows = |a: &crate::convert::FloatArray<'_>, key: &str| -> PyResult<usize> {
+        match a.shape() {
+            [n, 3] => Ok(*n),
+            s => Err(bad(format!("{}: shape {s:?}; expected (n, 3)", what(key)))),
+        }
+    };
+    let v = floats(&item("vertices")?, &what("vertices"))?;
+    let n = rows(&v, "vertices")?;
+    let vertices = lekalo::Points::from_flat(3, v.data().to_vec()).map_err(lib_err)?;
+    let t = item("triangles")?;
+    let triangles: Vec<[i64; 3]> = match t.cast::<numpy::PyArray2<i64>>() {
+        Ok(a) if a.shape()[1] == 3 && a.is_c_contiguous() => a
+            .to_vec()?
+            .chunks_exact(3)
+            .map(|c| [c[0], c[1], c[2]])
+            .collect(),
+        _ => t
+            .extract()
+            .map_err(|_| bad(format!("{}: expected (m, 3) integers", what("triangles"))))?,
+    };
+    let triangles = triangles
+        .into_iter()
+        .enumerate()
+        .map(|(j, tri)| {
+            let mut out = [0_u32; 3];
+            for (o, i) in out.iter_mut().zip(tri) {
+                *o = u32::try_from(i).map_err(|_| {
+                    bad(format!(
+                        "{}: triangle {j} has index {i}; indices run from 0 to {}",
+                        what("triangles"),
+                        n.saturating_sub(1)
+                    ))
+                })?;
+            }
+            Ok(out)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let normals = match d.get_item("normals").ok().filter(|x| !x.is_none()) {
+        None => Vec::new(),
+        Some(x) => {
+            let a = floats(&x, &what("normals"))?;
+            rows(&a, "normals")?;
+            a.data()
+                .chunks_exact(3)
+                .map(|c| [c[0], c[1], c[2]])
+                .collect()
+        }
+    };
+    let id = match d.get_item("id").ok().filter(|x| !x.is_none()) {
+        None => 0,
+        Some(x) => x
+            .extract::<u64>()
+            .map_err(|_| bad(format!("{}: expected a non-negative integer", what("id"))))?,
+    };
+    Ok(lekalo_io::StepTriangulation {
+        id,
+        entity: String::new(),
+        name: String::new(),
+        link: None,
+        vertices,
+        triangles,
+        normals,
+        dropped: 0,
+    })
 }
 
 /// Writes faces to an IGES file as trimmed surfaces (entity 144 over 128, each loop a 142 with

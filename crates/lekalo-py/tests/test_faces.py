@@ -447,13 +447,14 @@ def test_mesh_faces_lists_the_faces_that_fail_and_meshes_the_others_as_without_t
         c[2] += 1.0
     lifted = lekalo.Face.from_json(json.dumps(d))
     tol = 1e-3
-    vertices, triangles, failures = lekalo.mesh_faces([tube, lifted, plate], tol)
+    vertices, triangles, normals, failures = lekalo.mesh_faces([tube, lifted, plate], tol)
     assert [k for k, _ in failures] == [1]
     assert "does not lie on the face's surface" in failures[0][1]
     assert triangles.dtype == np.uint32 and triangles.max() < len(vertices)
-    alone_v, alone_t, none = lekalo.mesh_faces([tube, plate], tol)
+    alone_v, alone_t, alone_n, none = lekalo.mesh_faces([tube, plate], tol)
     assert none == []
     assert np.array_equal(vertices, alone_v) and np.array_equal(triangles, alone_t)
+    assert np.array_equal(normals, alone_n)
     # the tube and the plate share no edge: the joined mesh is the two meshes one after the other
     tv, tt = tube.mesh(tol)
     pv, pt = plate.mesh(tol)
@@ -461,6 +462,83 @@ def test_mesh_faces_lists_the_faces_that_fail_and_meshes_the_others_as_without_t
     assert np.array_equal(triangles, np.vstack([tt, pt + len(tv)]))
     with pytest.raises(ValueError, match="tolerance"):
         lekalo.mesh_faces([plate], 0.0)
+
+
+# the same half sphere as a face whose normal points into the sphere: its loop runs the equator
+# clockwise from above, the face on its left seen from inside
+CAP_INWARD = CAP.replace("#310=ORIENTED_EDGE('',*,*,#309,.T.);", "#310=ORIENTED_EDGE('',*,*,#309,.F.);").replace(
+    "#313=ADVANCED_FACE('cap',(#312),#305,.T.);", "#313=ADVANCED_FACE('cap',(#312),#305,.F.);"
+)
+
+
+def turn_with_their_normals(vertices, triangles, normals):
+    """Every triangle turns counter-clockwise about the normals of its three vertices."""
+    a, b, c = (vertices[triangles[:, k]] for k in range(3))
+    turn = np.cross(b - a, c - a)
+    return all(np.all(np.einsum("ij,ij->i", turn, normals[triangles[:, k]]) > 0) for k in range(3))
+
+
+@pytest.mark.parametrize("data, sign", [(CAP, 1.0), (CAP_INWARD, -1.0)])
+def test_mesh_faces_gives_the_surfaces_exact_unit_normals_turned_by_the_face(tmp_path, data, sign):
+    cap = lekalo.read_step(write(tmp_path, "cap.step", data), faces=True)["faces"][0]
+    vertices, triangles, normals, failures = lekalo.mesh_faces([cap], 1e-3)
+    assert failures == []
+    assert normals.dtype == np.float64 and normals.shape == vertices.shape
+    # copies of the pole that no triangle uses have no normal, (0, 0, 0); every other vertex
+    # has its unit normal
+    used = np.zeros(len(vertices), dtype=bool)
+    used[triangles.ravel()] = True
+    assert np.all(normals[~used] == 0.0) and np.all(np.abs(vertices[~used, 2] - 1.0) < 1e-12)
+    assert used.sum() > 0.99 * len(vertices)
+    assert np.allclose(np.linalg.norm(normals[used], axis=1), 1.0, rtol=0, atol=1e-12)
+    # the unit sphere about the origin: its outward normal at p is p itself; the face's is the
+    # surface's turned by its sense
+    pole = np.abs(vertices[:, 2] - 1.0) < 1e-12
+    off = used & ~pole
+    assert np.abs(normals[off] - sign * vertices[off]).max() < 1e-9
+    # at the pole S_u x S_v vanishes: the mean of the exact normals at its triangles' (u, v)
+    # centres, within the polar angle of those triangles' other vertices of the pole's normal
+    near = triangles[np.any(pole[triangles], axis=1)]
+    widest = vertices[near.ravel()][:, 2].min()
+    assert np.all(sign * normals[used & pole][:, 2] >= widest)
+    assert turn_with_their_normals(vertices, triangles, normals)
+
+
+def test_mesh_faces_joins_the_faces_of_triangles_with_their_normals(tmp_path):
+    cap = lekalo.read_step(write(tmp_path, "cap.step", CAP), faces=True)["faces"][0]
+    tess = lekalo.read_step(write(tmp_path, "tri.stp", TRIANGLES), faces=True)["tessellated"]
+    cv, ct, cn, _ = lekalo.mesh_faces([cap], 1e-3)
+    vertices, triangles, normals, failures = lekalo.mesh_faces([cap], 1e-3, tessellated=tess)
+    assert failures == []
+    # the meshed face first, as alone; then each face of triangles as the file gives it
+    k = len(cv)
+    assert np.array_equal(vertices[:k], cv) and np.array_equal(normals[:k], cn)
+    assert np.array_equal(triangles[: len(ct)], ct)
+    assert np.array_equal(vertices[k:], np.vstack([t["vertices"] for t in tess]))
+    offsets = k + np.cumsum([0] + [len(t["vertices"]) for t in tess[:-1]])
+    given = np.vstack([t["triangles"] + o for t, o in zip(tess, offsets)])
+    assert np.array_equal(triangles[len(ct):], given)
+    # their normals the file's made unit; the set without normals has none: zeros
+    square, strip, surface_set = tess
+    assert np.array_equal(normals[k : k + 4], square["normals"])
+    assert np.array_equal(normals[k + 4 : k + 8], strip["normals"])
+    assert np.array_equal(normals[k + 8 :], np.zeros((4, 3)))
+    assert turn_with_their_normals(vertices[: k + 8], triangles[: len(ct) + 4], normals[: k + 8])
+    # faces of triangles only, none of which gives normals: no normals at all
+    v, t, n, f = lekalo.mesh_faces([], 1e-3, tessellated=[surface_set])
+    assert n is None and f == [] and t.tolist() == [[0, 1, 2]] and len(v) == 4
+    # lists of numbers do as arrays do
+    plain = {"vertices": square["vertices"].tolist(), "triangles": square["triangles"].tolist(), "normals": None}
+    v, t, n, f = lekalo.mesh_faces([], 1e-3, tessellated=[plain])
+    assert np.array_equal(v, square["vertices"]) and t.tolist() == [[0, 1, 2], [0, 2, 3]] and n is None
+    # a face of triangles that does not hold together is named by its place and id
+    bad = dict(square, triangles=np.array([[0, 1, 9]]))
+    with pytest.raises(ValueError, match=r"face of triangles: 1 \(#2\): triangle 0 has index 9, past its 4 points"):
+        lekalo.mesh_faces([cap], 1e-3, tessellated=[strip, bad])
+    with pytest.raises(ValueError, match=r"tessellated\[0\]\[\'triangles\'\]: triangle 0 has index -1"):
+        lekalo.mesh_faces([], 1e-3, tessellated=[dict(square, triangles=np.array([[-1, 1, 2]]))])
+    with pytest.raises(ValueError, match=r"tessellated\[0\]: no 'vertices'"):
+        lekalo.mesh_faces([], 1e-3, tessellated=[{"triangles": [[0, 1, 2]]}])
 
 
 def _plate_with(plate, inner, face_id):
@@ -508,7 +586,7 @@ def test_faces_with_bad_trims_are_refused_naming_the_loop_and_repairs_are_warned
                                   "pcurve": line([5.0, 5.0])}]], 78)
     assert point.check_trims() == ["inner loop 1 has no length (a hole of one point): dropped"]
     with pytest.warns(UserWarning, match="face 1: inner loop 1 has no length"):
-        vertices, triangles, failures = lekalo.mesh_faces([outside, point, crossing], 1e-2)
+        vertices, triangles, _, failures = lekalo.mesh_faces([outside, point, crossing], 1e-2)
     assert [k for k, _ in failures] == [0, 2]
     assert "leaves the surface's domain" in failures[0][1]
     assert "crosses inner loop 1" in failures[1][1]

@@ -360,8 +360,11 @@ def read_iges(path: Any, *, faces: bool = False, max_size: int = 10000000, skipp
 def write_step(path: Any, faces: Sequence[Face], *, name: Optional[str] = None) -> None: ...
 def write_iges(path: Any, faces: Sequence[Face]) -> None: ...
 def mesh_faces(
-    faces: Sequence[Face], tolerance: float
-) -> Tuple[Array, npt.NDArray[np.uint32], List[Tuple[int, str]]]: ...
+    faces: Sequence[Face],
+    tolerance: float,
+    *,
+    tessellated: Optional[Sequence[Dict[str, Any]]] = None,
+) -> Tuple[Array, npt.NDArray[np.uint32], Optional[Array], List[Tuple[int, str]]]: ...
 def interpolate(
     points: ArrayLike,
     degree: int = 3,

@@ -47,6 +47,24 @@ impl FaceMeshes {
     pub fn join(&self) -> Result<Mesh> {
         join(self.meshes.iter().map(|(_, m)| m))
     }
+
+    /// The unit normals of the vertices of [`FaceMeshes::join`], in its order: for each face
+    /// meshed, [`Mesh::surface_normals`] of its mesh on its face's surface, turned by the face's
+    /// sense ([`Face::same_sense`]): the exact `S_u × S_v / |S_u × S_v|` at each vertex's
+    /// `(u, v)`, the pole fallback where that is undefined. `faces` is the set that was meshed
+    /// (the slice given to [`mesh_faces_each`]); a face index past it (a different set) gives
+    /// `None` for its vertices.
+    #[must_use]
+    pub fn surface_normals(&self, faces: &[&Face]) -> Vec<Option<[f64; 3]>> {
+        let mut normals = Vec::with_capacity(self.meshes.iter().map(|(_, m)| m.uv.len()).sum());
+        for (i, m) in &self.meshes {
+            match faces.get(*i) {
+                Some(f) => normals.extend(m.surface_normals(f.surface(), f.same_sense())),
+                None => normals.extend(std::iter::repeat_n(None, m.vertices.len())),
+            }
+        }
+        normals
+    }
 }
 
 /// Uses of one edge, by the index of their face in the whole set, their loop and their place
@@ -408,8 +426,8 @@ impl Face {
 ///
 /// # Errors
 /// [`Error::Dimension`] when the meshes' points differ in dimension.
-pub fn join_meshes(meshes: &[Mesh]) -> Result<Mesh> {
-    join(meshes.iter())
+pub fn join_meshes<'a>(meshes: impl IntoIterator<Item = &'a Mesh>) -> Result<Mesh> {
+    join(meshes.into_iter())
 }
 
 #[allow(clippy::cast_possible_truncation)] // vertex counts below MAX_MESH_VERTICES

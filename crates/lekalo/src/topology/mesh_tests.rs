@@ -742,3 +742,47 @@ fn faces_whose_edges_meet_within_a_tolerance_close_their_loops_at_the_shared_ver
         assert!(m.deviation <= tol, "{}", m.deviation);
     }
 }
+
+/// The normals of a set of faces' joined mesh: each vertex's the exact unit normal of the
+/// saddle `z = u² − v²`, `(−2u, 2v, 1) / |…|`, turned for the face whose sense is reversed, so
+/// every vertex's normal is on the side its triangles turn about; a face past the set given
+/// has none.
+#[test]
+fn the_normals_of_a_set_of_faces_are_their_surfaces_turned_by_their_sense() {
+    let a = saddle_loop(&[[0.0, 0.0], [0.5, 0.0], [0.5, 1.0], [0.0, 1.0]]);
+    // the right half with the face's normal against the surface's: its loop runs clockwise
+    let b = saddle_loop(&[[0.5, 0.0], [0.5, 1.0], [1.0, 1.0], [1.0, 0.0]]);
+    let fa = Face::new(saddle(), a, vec![], true, LOOP_CLOSURE_RTOL).unwrap();
+    let fb = Face::new(saddle(), b, vec![], false, LOOP_CLOSURE_RTOL).unwrap();
+    let r = mesh_faces_each(&[&fa, &fb], 1e-3).unwrap();
+    assert!(r.failures.is_empty());
+    let joined = r.join().unwrap();
+    let normals = r.surface_normals(&[&fa, &fb]);
+    assert_eq!(normals.len(), joined.vertices.len());
+    let first = r.meshes[0].1.vertices.len();
+    for (k, n) in normals.iter().enumerate() {
+        let n = n.unwrap();
+        let [u, v] = joined.uv[k];
+        let l = (4.0 * u * u + 4.0 * v * v + 1.0).sqrt();
+        let sign = if k < first { 1.0 } else { -1.0 };
+        let exact = [-2.0 * u / l, 2.0 * v / l, 1.0 / l].map(|x| sign * x);
+        for d in 0..3 {
+            assert!(
+                (n[d] - exact[d]).abs() < 1e-12,
+                "vertex {k}: {n:?}, not {exact:?}"
+            );
+        }
+    }
+    for (t, tri) in joined.triangles.iter().enumerate() {
+        let f = joined.facet_normal(t).unwrap();
+        for &k in tri {
+            let n = normals[k as usize].unwrap();
+            let dot: f64 = (0..3).map(|d| f[d] * n[d]).sum();
+            assert!(dot > 0.0, "triangle {t} turns against vertex {k}'s normal");
+        }
+    }
+    // the set given shorter than the set meshed: the missing face's vertices have none
+    let short = r.surface_normals(&[&fa]);
+    assert_eq!(short[..first], normals[..first]);
+    assert!(short[first..].iter().all(Option::is_none));
+}

@@ -108,10 +108,11 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
                 .map_err(bad)?,
             )
         };
-        let (meshes, failures, above, repairs) = match meshed {
-            Some(m) => (m.meshes, m.failures, m.above_tolerance, m.repairs),
-            None => (Vec::new(), Vec::new(), Vec::new(), Vec::new()),
+        let (failures, above, repairs) = match &meshed {
+            Some(m) => (&m.failures[..], &m.above_tolerance[..], &m.repairs[..]),
+            None => (&[][..], &[][..], &[][..]),
         };
+        let meshed_faces = meshed.as_ref().map_or(0, |m| m.meshes.len());
         skipped.extend(failures.iter().map(|(i, e)| (ready[*i].0, e.to_string())));
         skipped.sort_by_key(|(k, _)| *k);
         let name = |k: usize| {
@@ -122,7 +123,7 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
                 format!("#{} ({})", f.id, f.name)
             }
         };
-        if meshes.is_empty() && triangulations.is_empty() {
+        if meshed_faces == 0 && triangulations.is_empty() {
             if faces.is_empty() {
                 // nothing bounded by curves, and no face of triangles read: the reader listed
                 // what it skipped, with the reasons, on standard error
@@ -170,38 +171,18 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
         for (k, r) in &coarse {
             crate::output::report(&format!("warning: face {}: {r}", name(*k)));
         }
-        // the faces of triangles join as the file gives them: their triangles are the geometry
-        let meshed_faces = meshes.len();
+        // the faces meshed, then the faces of triangles as the file gives them (their triangles
+        // are the geometry), as one mesh with the normals of its vertices (none when no vertex
+        // has one)
         let tessellated_triangles: usize = triangulations.iter().map(|t| t.triangles.len()).sum();
-        // the normals of the vertices, in the order of the joined mesh: a meshed face's its
-        // surface's (turned by its sense), a face of triangles' the file's (none if it gives none)
-        let mut normals: Vec<Option<[f64; 3]>> = Vec::new();
-        for (i, m) in &meshes {
-            let f = &ready[*i].1;
-            normals.extend(m.surface_normals(f.surface(), f.same_sense()));
-        }
-        for t in &triangulations {
-            let n = t.vertex_normals();
-            if n.is_empty() {
-                normals.extend(std::iter::repeat_n(None, t.vertices.len()));
-            } else {
-                normals.extend(n);
-            }
-        }
-        let all: Vec<lekalo::query::Mesh> = meshes
-            .into_iter()
-            .map(|(_, m)| m)
-            .chain(
-                triangulations
-                    .iter()
-                    .map(lekalo_io::StepTriangulation::to_mesh),
-            )
-            .collect();
-        let m = lekalo::topology::join_meshes(&all).map_err(bad)?;
-        drop(all);
-        if normals.iter().all(Option::is_none) {
-            normals.clear();
-        }
+        let joined = lekalo_io::join_cad_mesh(
+            meshed.as_ref(),
+            &ready.iter().map(|(_, f)| f).collect::<Vec<_>>(),
+            &triangulations,
+        )
+        .map_err(bad)?;
+        drop(meshed);
+        let (m, normals) = (joined.mesh, joined.normals);
         let listed = |l: &[(usize, String)]| -> Vec<serde_json::Value> {
             l.iter()
                 .map(|(k, r)| json!({"id": faces[*k].id, "name": faces[*k].name, "reason": r}))
