@@ -384,6 +384,24 @@ pub(super) fn digits_up(x: f64) -> f64 {
     }
 }
 
+/// `x` rounded down to four significant digits (the bound to quote where a value must not be
+/// exceeded), as [`digits_up`] rounds up.
+pub(super) fn digits_down(x: f64) -> f64 {
+    if !(x.is_finite() && x > 0.0) {
+        return x;
+    }
+    // the decimal exponent of a finite positive double lies within ±324: the cast is exact
+    #[allow(clippy::cast_possible_truncation)]
+    let e = x.log10().floor() as i32;
+    let scale = 10f64.powi(3 - e);
+    let down = (x * scale).floor() / scale;
+    if down <= x && down.is_finite() {
+        down
+    } else {
+        x
+    }
+}
+
 /// Relative distance of the residual from `s` at which [`constrained_smoothing_condition`]
 /// stops (FITPACK's `|fp − s| ≤ 0.001·s`).
 pub const CONDITION_RTOL: f64 = 1e-3;

@@ -440,6 +440,22 @@ pub(crate) fn solve_sparse(
     inequalities: &[(Row, usize)],
     cone_rows: &[([Row; 3], usize)],
 ) -> std::result::Result<Vec<f64>, Failure> {
+    solve_sparse_scaled(upper, q, (equalities, inequalities, cone_rows), None)
+}
+
+/// [`solve_sparse`], with `P` and `q` divided by `objective` when it is given: the size of the
+/// objective at the unconstrained minimum, `|½ qᵀx₀|`, for programs whose Hessian has
+/// eigenvalues many orders apart (a heavy penalty beside the data's flat directions). Scaled
+/// by `P`'s largest entry, such an objective is tiny, and the solver's absolute gap tolerance
+/// would accept an answer far from the minimum; scaled by its own size, the tolerances are
+/// relative to it. Only a fully solved program is then accepted: Clarabel's `AlmostSolved`
+/// (the reduced tolerances it falls back to when its steps stall) is reported as a failure.
+pub(crate) fn solve_sparse_scaled(
+    upper: &SparseUpper,
+    q: &[f64],
+    (equalities, inequalities, cone_rows): (&[(Row, usize)], &[(Row, usize)], &[([Row; 3], usize)]),
+    objective: Option<f64>,
+) -> std::result::Result<Vec<f64>, Failure> {
     let n = upper.n;
     let nv = n + cone_rows.len();
     let pmax = (0..n).fold(0.0_f64, |m, j| {
@@ -447,7 +463,12 @@ pub(crate) fn solve_sparse(
             .filter(|&k| upper.rowval[k] == j)
             .fold(m, |m, k| m.max(upper.nzval[k].abs()))
     });
-    let pscale = if pmax > 0.0 { 1.0 / pmax } else { 1.0 };
+    let objective = objective.filter(|f| *f > 0.0 && f.is_finite());
+    let pscale = match objective {
+        Some(f) => 1.0 / f,
+        None if pmax > 0.0 => 1.0 / pmax,
+        None => 1.0,
+    };
     let mut colptr = upper.colptr.clone();
     colptr.resize(nv + 1, upper.rowval.len());
     let pm = CscMatrix::new(
@@ -539,6 +560,9 @@ pub(crate) fn solve_sparse(
     solver.solve();
     let sol = &solver.solution;
     match sol.status {
+        SolverStatus::AlmostSolved if objective.is_some() => Err(Failure::Status(
+            "only to reduced accuracy (AlmostSolved)".into(),
+        )),
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
             let mut out = sol.x.clone();
             // the multipliers of the rows, in the order given (for the polish's signs)

@@ -5,7 +5,7 @@
 use std::collections::HashSet;
 
 use super::super::check::SHAPE_RTOL;
-use super::super::program::{failure_error, solve_sparse, Failure, SparseUpper};
+use super::super::program::{failure_error, solve_sparse_scaled, Failure, SparseUpper};
 use super::super::row::Row;
 use super::cells::Space;
 use super::check::violations;
@@ -105,7 +105,7 @@ pub fn constrained_surface_grid_least_squares(
     let center = z[0];
     let lin = grid_linear(z, (nu, nv), (&bu, &bv), (ncu, ncv), center, scale.y);
     let upper = kronecker_upper(&gu, &gv, (ncu, ncv), (p, q));
-    let net = solve(&space, &upper, &lin, center, &scale, constraints)?;
+    let net = solve(&space, &upper, &lin, (center, &scale), constraints, None)?;
     BSplineSurface::from_knot_vectors(
         p,
         q,
@@ -180,7 +180,7 @@ pub fn constrained_surface_scattered_least_squares(
     } = scattered_normal_equations(data, weights, (p, q), (ku, kv), penalty, &Progress::new())?;
     let upper = SparseUpper::of_band(&a);
     let lin: Vec<f64> = rhs.iter().map(|r| -r / scale.y).collect();
-    let coef = solve(&space, &upper, &lin, center[0], &scale, constraints)?;
+    let coef = solve(&space, &upper, &lin, (center[0], &scale), constraints, None)?;
     let surface = BSplineSurface::from_knot_vectors(
         p,
         q,
@@ -406,14 +406,16 @@ fn program_rows(
 
 /// The net (in the data's units) minimising `½xᵀPx + linᵀx` over `x = (c − center)/Y` subject
 /// to every shape's rows, by Clarabel with every row kept [`MARGIN`] inside its bound (without
-/// it when that leaves no room, as for equal bounds), checked against every condition.
+/// it when that leaves no room, as for equal bounds), checked against every condition. With
+/// `objective` (the size of the objective at the unconstrained minimum), the program is scaled
+/// by it and accepted only when fully solved ([`solve_sparse_scaled`]).
 pub(super) fn solve(
     space: &Space<'_>,
     upper: &SparseUpper,
     lin: &[f64],
-    center: f64,
-    scale: &Scales,
+    (center, scale): (f64, &Scales),
     constraints: &SurfaceShapeConstraints,
+    objective: Option<f64>,
 ) -> Result<Vec<f64>> {
     let rows = program_rows(space, center, scale.y, constraints);
     let n = upper.n;
@@ -427,7 +429,7 @@ pub(super) fn solve(
                 (r, *o)
             })
             .collect();
-        match solve_sparse(upper, lin, &[], &tightened, &[]) {
+        match solve_sparse_scaled(upper, lin, (&[], &tightened, &[]), objective) {
             Ok(x) => {
                 let net: Vec<f64> = x[..n].iter().map(|v| center + scale.y * v).collect();
                 if scale.holds(space, &net, constraints) {

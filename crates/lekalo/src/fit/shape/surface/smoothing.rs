@@ -4,7 +4,9 @@
 //! given, chosen by GCV for the unconstrained spline, or scaled together until the residual is
 //! `s`.
 
-use super::super::fits::{digits_up, CONDITION_DECADES, CONDITION_RTOL, CONDITION_STEPS};
+use super::super::fits::{
+    digits_down, digits_up, CONDITION_DECADES, CONDITION_RTOL, CONDITION_STEPS,
+};
 use super::cells::Space;
 use super::constraints::SurfaceShapeConstraints;
 use super::fits::{
@@ -165,13 +167,22 @@ pub fn constrained_surface_grid_smoothing_condition(
     // bracket: (t, fit) with the residual below s and above it
     let below = start.residual < s;
     let mut near = (1.0, start);
+    let mut stopped = false;
     for _ in 0..CONDITION_DECADES {
         let t = if below { near.0 * 10.0 } else { near.0 / 10.0 };
         let f = match fit_at(t) {
             Ok(f) => f,
-            // weights so small (or large) that the program loses its pivots: the search ends
-            // at the last one solved
-            Err(Error::SingularSystem { .. } | Error::IllConditioned { .. }) => break,
+            // weights so small (or large) that the program cannot be solved: the search ends
+            // at the last one solved, and says so
+            Err(e)
+                if matches!(
+                    e,
+                    Error::SingularSystem { .. } | Error::IllConditioned { .. }
+                ) || e.arg() == Some(Arg::Lambda) =>
+            {
+                stopped = true;
+                break;
+            }
             Err(e) => return Err(e),
         };
         if close(&f) {
@@ -203,11 +214,36 @@ pub fn constrained_surface_grid_smoothing_condition(
         }
         near = (t, f);
     }
+    if below && stopped {
+        let most = digits_down(near.1.residual);
+        return Err(Error::InvalidArgument {
+            what: What::of(Arg::S, "s (smoothing condition)"),
+            reason: format!(
+                "the shape-constrained program can be solved up to a residual sum of squares of \
+                 about {most} (heavier weights make it too ill-conditioned), below s = {s}; \
+                 give s ≤ {most}, or λ",
+                most = readable(&most),
+                s = readable(&s)
+            ),
+        });
+    }
     if below {
         // even the smoothest fit tried stays below s
         return Ok(near.1);
     }
     let least = digits_up(near.1.residual);
+    if stopped {
+        return Err(Error::InvalidArgument {
+            what: What::of(Arg::S, "s (smoothing condition)"),
+            reason: format!(
+                "the shape-constrained program can be solved down to a residual sum of squares \
+                 of about {least} (lighter weights make it too ill-conditioned), above s = {s}; \
+                 give s ≥ {least}, or λ",
+                least = readable(&least),
+                s = readable(&s)
+            ),
+        });
+    }
     Err(Error::InvalidArgument {
         what: What::of(Arg::S, "s (smoothing condition)"),
         reason: format!(
@@ -325,7 +361,40 @@ impl<'a> Grid<'a> {
             center,
             self.scale.y,
         );
-        let net = solve(&space, &upper, &lin, center, &self.scale, constraints)?;
+        // the objective at the unconstrained minimum x₀ = (plain − center)/Y, ½ linᵀx₀ (the
+        // gradient vanishes there): heavy weights leave it tiny beside the Hessian's largest
+        // entries, so the program is scaled by it
+        let objective = plain
+            .control_points()
+            .as_slice()
+            .iter()
+            .zip(&lin)
+            .map(|(c, l)| l * (c - center) / self.scale.y)
+            .sum::<f64>()
+            .abs()
+            * 0.5;
+        let net = solve(
+            &space,
+            &upper,
+            &lin,
+            (center, &self.scale),
+            constraints,
+            Some(objective),
+        )
+        .map_err(|e| match e {
+            Error::IllConditioned { .. } => Error::InvalidArgument {
+                what: What::of(Arg::Lambda, "λ (penalty weight)"),
+                reason: format!(
+                    "({}, {}) with shape constraints: the penalised program's Hessian is too \
+                     ill-conditioned there for the interior point to reach its minimum (the \
+                     penalty is many orders stiffer than the data in some direction); give \
+                     smaller weights, or --s / s for a residual",
+                    readable(&lams[0]),
+                    readable(&lams[1])
+                ),
+            },
+            e => e,
+        })?;
         let surface = BSplineSurface::from_knot_vectors(
             3,
             3,

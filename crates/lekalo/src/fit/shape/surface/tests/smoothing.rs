@@ -275,3 +275,24 @@ fn what_cannot_be_done_is_refused_by_name() {
     assert!(matches!(e, Error::InvalidArgument { .. }), "{e}");
     assert!(e.to_string().contains("give s ≥"), "{e}");
 }
+
+#[test]
+fn weights_too_heavy_for_the_interior_point_are_refused_not_answered_loosely() {
+    // λ_v = 6·10⁴ leaves the Hessian's eigenvalues about ten orders apart: the interior point
+    // stops short of the minimum (before the program was scaled by its own objective it
+    // returned a surface with 100 times the residual, inside the constraints), so the fit is
+    // refused by name, with the fix
+    let (u, v, z) = rippled_grid(16, 12);
+    let values = PointsRef::from_flat(1, &z).unwrap();
+    let e = constrained_surface_grid_smoothing_spline(
+        values,
+        (&u, &v),
+        [Lambda::Given(1e-4), Lambda::Given(6e4)],
+        &increasing_u(),
+    )
+    .unwrap_err();
+    assert!(matches!(e, Error::InvalidArgument { .. }), "{e}");
+    assert_eq!(e.arg(), Some(crate::Arg::Lambda));
+    assert!(e.to_string().contains("ill-conditioned"), "{e}");
+    assert!(e.to_string().contains("give smaller weights"), "{e}");
+}
