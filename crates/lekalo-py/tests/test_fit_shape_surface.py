@@ -111,15 +111,15 @@ def dense_tensor(s):
 
 
 def test_grid_smoothing_spline_keeps_shapes():
-    free, r0 = lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, lam=[1e-5, None])
+    free, r0 = lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, lam=[1e-5, 1e-4])
     assert (np.diff(dense_tensor(free), axis=0) < -1e-3).any()
-    s, r = lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, lam=[1e-5, None], increasing="u", max=1.6)
+    s, r = lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, lam=[1e-5, 1e-4], increasing="u", max=1.6)
     assert isinstance(s, lekalo.TensorBSpline)
     z = dense_tensor(s)
     assert (np.diff(z, axis=0) >= -1e-12).all()
     assert z.max() <= 1.6 + 1e-12
-    # GCV's weight is the unconstrained spline's; the residual rises
-    assert r["lam"] == pytest.approx(r0["lam"], rel=0, abs=0)
+    # the weights given; the residual rises
+    assert r["lam"] == [1e-5, 1e-4]
     assert r["residual"] > r0["residual"]
     assert r["gcv"] is None and r["trace"] is None
     # the residual reported is the spline's at the nodes
@@ -136,9 +136,15 @@ def test_grid_smoothing_inactive_shapes_change_nothing():
 
 
 def test_grid_smoothing_condition_in_shape():
-    _, gcv = lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, increasing="u")
-    target = 2.0 * gcv["residual"]
-    s, r = lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, s=target, increasing="u")
+    # a 14 x 10 table, where the weights the condition needs keep the program well enough
+    # conditioned to solve
+    u, v = np.linspace(0.0, 1.0, 14), np.linspace(0.0, 1.0, 10)
+    i, j = np.meshgrid(np.arange(14), np.arange(10), indexing="ij")
+    uu, vv = np.meshgrid(u, v, indexing="ij")
+    z = uu + 0.5 * vv**2 + 0.25 * np.sin(9 * uu) + 0.15 * np.sin(1.7 * (7 * i + 3 * j))
+    _, gcv = lekalo.fit_tensor_grid_smoothing_spline([u, v], z, increasing="u")
+    target = 1.3 * gcv["residual"]
+    s, r = lekalo.fit_tensor_grid_smoothing_spline([u, v], z, s=target, increasing="u")
     assert abs(r["residual"] - target) <= 1e-3 * target
     assert (np.diff(dense_tensor(s), axis=0) >= -1e-12).all()
     # the weights keep GCV's ratio
@@ -154,6 +160,9 @@ def test_grid_smoothing_refusals_name_the_argument():
         lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, s=1.0)
     with pytest.raises(lekalo.InputError, match="give s ≥"):
         lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, s=1e-9, max=0.0)
+    # weights too heavy for the interior point are refused by name, never answered loosely
+    with pytest.raises(lekalo.InputError, match="ill-conditioned"):
+        lekalo.fit_tensor_grid_smoothing_spline([U, V], Z, lam=[1e-4, 6e4], increasing="u")
     w = np.linspace(0, 1, 5)
     with pytest.raises(lekalo.InputError, match="two axes"):
         lekalo.fit_tensor_grid_smoothing_spline([U, V, w], np.zeros((16, 12, 5)), increasing="u")

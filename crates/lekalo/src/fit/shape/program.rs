@@ -443,6 +443,14 @@ pub(crate) fn solve_sparse(
     solve_sparse_scaled(upper, q, (equalities, inequalities, cone_rows), None)
 }
 
+/// The rows of a program, each with the constraint it comes from: equalities, inequalities,
+/// and second-order cones of three rows.
+pub(crate) type ProgramRows<'a> = (
+    &'a [(Row, usize)],
+    &'a [(Row, usize)],
+    &'a [([Row; 3], usize)],
+);
+
 /// [`solve_sparse`], with `P` and `q` divided by `objective` when it is given: the size of the
 /// objective at the unconstrained minimum, `|½ qᵀx₀|`, for programs whose Hessian has
 /// eigenvalues many orders apart (a heavy penalty beside the data's flat directions). Scaled
@@ -453,7 +461,7 @@ pub(crate) fn solve_sparse(
 pub(crate) fn solve_sparse_scaled(
     upper: &SparseUpper,
     q: &[f64],
-    (equalities, inequalities, cone_rows): (&[(Row, usize)], &[(Row, usize)], &[([Row; 3], usize)]),
+    (equalities, inequalities, cone_rows): ProgramRows<'_>,
     objective: Option<f64>,
 ) -> std::result::Result<Vec<f64>, Failure> {
     let n = upper.n;
