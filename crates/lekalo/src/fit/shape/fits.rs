@@ -344,7 +344,7 @@ fn condition_in_steps(
         if (f.report.weighted_rss < s) != below {
             let far = (lam, f);
             let (lo, hi) = if below { (near, far) } else { (far, near) };
-            return bisect_condition(lo, hi, s, &fit_at, &close);
+            return bisect_condition((lo, hi), s, &fit_at, &close, |f| f.report.weighted_rss);
         }
         near = (lam, f);
     }
@@ -412,14 +412,16 @@ pub(super) const CONDITION_DECADES: usize = 16;
 /// Bisection steps in `log λ` (each halves the bracket's ratio).
 pub(super) const CONDITION_STEPS: usize = 80;
 
-/// Bisection in `log λ` between a fit whose residual is below `s` and one above.
-fn bisect_condition(
-    mut lo: (f64, CurveFit),
-    mut hi: (f64, CurveFit),
+/// Bisection in `log λ` between a fit whose residual is below `s` and one above, until a fit
+/// is `close` to `s` or the bracket can no longer be split; the nearer end then. Shared by the
+/// curves' and the surfaces' smoothing conditions (`residual` reads a fit's).
+pub(super) fn bisect_condition<F>(
+    (mut lo, mut hi): ((f64, F), (f64, F)),
     s: f64,
-    fit_at: &dyn Fn(f64) -> Result<CurveFit>,
-    close: &dyn Fn(&CurveFit) -> bool,
-) -> Result<CurveFit> {
+    fit_at: &dyn Fn(f64) -> Result<F>,
+    close: &dyn Fn(&F) -> bool,
+    residual: fn(&F) -> f64,
+) -> Result<F> {
     for _ in 0..CONDITION_STEPS {
         let lam = (lo.0 * hi.0).sqrt();
         if lam <= lo.0 || lam >= hi.0 {
@@ -429,14 +431,14 @@ fn bisect_condition(
         if close(&f) {
             return Ok(f);
         }
-        if f.report.weighted_rss < s {
+        if residual(&f) < s {
             lo = (lam, f);
         } else {
             hi = (lam, f);
         }
     }
     // the nearer of the two ends
-    let d = |f: &CurveFit| (f.report.weighted_rss - s).abs();
+    let d = |f: &F| (residual(f) - s).abs();
     Ok(if d(&lo.1) <= d(&hi.1) { lo.1 } else { hi.1 })
 }
 

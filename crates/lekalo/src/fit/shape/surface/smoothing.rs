@@ -5,7 +5,7 @@
 //! `s`.
 
 use super::super::fits::{
-    digits_down, digits_up, CONDITION_DECADES, CONDITION_RTOL, CONDITION_STEPS,
+    bisect_condition, digits_down, digits_up, CONDITION_DECADES, CONDITION_RTOL,
 };
 use super::cells::Space;
 use super::constraints::SurfaceShapeConstraints;
@@ -189,28 +189,12 @@ pub fn constrained_surface_grid_smoothing_condition(
             return Ok(f);
         }
         if (f.residual < s) != below {
-            let (mut lo, mut hi) = if below {
+            let bracket = if below {
                 (near, (t, f))
             } else {
                 ((t, f), near)
             };
-            for _ in 0..CONDITION_STEPS {
-                let t = (lo.0 * hi.0).sqrt();
-                if t <= lo.0 || t >= hi.0 {
-                    break;
-                }
-                let f = fit_at(t)?;
-                if close(&f) {
-                    return Ok(f);
-                }
-                if f.residual < s {
-                    lo = (t, f);
-                } else {
-                    hi = (t, f);
-                }
-            }
-            let d = |f: &SurfaceGridSmoothing| (f.residual - s).abs();
-            return Ok(if d(&lo.1) <= d(&hi.1) { lo.1 } else { hi.1 });
+            return bisect_condition(bracket, s, &fit_at, &close, |f| f.residual);
         }
         near = (t, f);
     }
