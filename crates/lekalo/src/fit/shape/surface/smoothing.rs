@@ -126,12 +126,17 @@ pub fn constrained_surface_grid_smoothing_spline(
 /// ```
 /// use lekalo::fit::{constrained_surface_grid_smoothing_condition, surface_shape_violations, SurfaceShape, SurfaceShapeConstraints};
 /// use lekalo::{Direction, PointsRef};
-/// let u: Vec<f64> = (0..12).map(|i| i as f64 / 11.0).collect();
-/// let v: Vec<f64> = (0..9).map(|j| j as f64 / 8.0).collect();
-/// let z: Vec<f64> = u.iter().flat_map(|&x| v.iter().map(move |&y| x * y + 0.1 * (13.0 * x + 5.0 * y).sin())).collect();
-/// let c = SurfaceShapeConstraints::new().with(SurfaceShape::AtLeast(0.0));
-/// let f = constrained_surface_grid_smoothing_condition(PointsRef::from_flat(1, &z)?, (&u, &v), 0.5, &c)?;
-/// assert!((f.residual - 0.5).abs() <= 1e-3 * 0.5);
+/// let u: Vec<f64> = (0..14).map(|i| i as f64 / 13.0).collect();
+/// let v: Vec<f64> = (0..10).map(|j| j as f64 / 9.0).collect();
+/// // rising in u, with a ripple that makes the smoothing spline dip
+/// let z: Vec<f64> = (0..140).map(|k| {
+///     let (i, j) = (k / 10, k % 10);
+///     let (x, y) = (u[i], v[j]);
+///     x + 0.5 * y * y + 0.25 * (9.0 * x).sin() + 0.15 * ((7 * i + 3 * j) as f64 * 1.7).sin()
+/// }).collect();
+/// let c = SurfaceShapeConstraints::new().with(SurfaceShape::Increasing(Direction::U));
+/// let f = constrained_surface_grid_smoothing_condition(PointsRef::from_flat(1, &z)?, (&u, &v), 1.5, &c)?;
+/// assert!((f.residual - 1.5).abs() <= 1e-3 * 1.5);
 /// assert_eq!(surface_shape_violations(&f.surface, &c)?, vec![0.0]);
 /// # Ok::<(), lekalo::Error>(())
 /// ```
@@ -371,8 +376,9 @@ impl<'a> Grid<'a> {
                 reason: format!(
                     "({}, {}) with shape constraints: the penalised program's Hessian is too \
                      ill-conditioned there for the interior point to reach its minimum (the \
-                     penalty is many orders stiffer than the data in some direction); give \
-                     smaller weights, or --s / s for a residual",
+                     penalty is many orders stiffer, or softer, than the data in some \
+                     direction); give weights nearer the data's scale (smaller if these are \
+                     heavy)",
                     readable(&lams[0]),
                     readable(&lams[1])
                 ),
