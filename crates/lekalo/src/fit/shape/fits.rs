@@ -352,9 +352,15 @@ fn condition_in_steps(
         // even the straightest fit tried stays below s
         return Ok(near.1);
     }
-    // the bound a user types back: four digits, rounded up so that it is enough
-    let least = digits_up(near.1.report.weighted_rss);
-    Err(Error::InvalidArgument {
+    Err(least_residual_error(near.1.report.weighted_rss, s))
+}
+
+/// The refusal of a smoothing condition `s` below the least residual the shape constraints
+/// leave (`residual`, at the smallest penalty tried), curves and surfaces alike: the bound a
+/// user types back, four digits rounded up so that it is enough.
+pub(super) fn least_residual_error(residual: f64, s: f64) -> Error {
+    let least = digits_up(residual);
+    Error::InvalidArgument {
         what: What::of(Arg::S, "s (smoothing condition)"),
         reason: format!(
             "the shape constraints leave a residual sum of squares of at least about {least} \
@@ -363,7 +369,7 @@ fn condition_in_steps(
             least = readable(&least),
             s = readable(&s)
         ),
-    })
+    }
 }
 
 /// `x > 0` rounded up to four significant digits (`53.522558…` → `53.53`), as a message

@@ -5,7 +5,8 @@
 //! `s`.
 
 use super::super::fits::{
-    bisect_condition, digits_down, digits_up, CONDITION_DECADES, CONDITION_RTOL,
+    bisect_condition, digits_down, digits_up, least_residual_error, CONDITION_DECADES,
+    CONDITION_RTOL,
 };
 use super::cells::Space;
 use super::constraints::SurfaceShapeConstraints;
@@ -233,16 +234,7 @@ pub fn constrained_surface_grid_smoothing_condition(
             ),
         });
     }
-    Err(Error::InvalidArgument {
-        what: What::of(Arg::S, "s (smoothing condition)"),
-        reason: format!(
-            "the shape constraints leave a residual sum of squares of at least about {least} \
-             (at the smallest penalty tried), above s = {s}; give s ≥ {least}, or fewer \
-             constraints",
-            least = readable(&least),
-            s = readable(&s)
-        ),
-    })
+    Err(least_residual_error(near.1.residual, s))
 }
 
 /// The pieces of the program every weight shares: the values, the knots of the grid's
