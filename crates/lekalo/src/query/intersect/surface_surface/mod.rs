@@ -9,9 +9,11 @@
 //! | `system.rs` | the equations (two surfaces, or a surface and a plane), their tangent and Newton's method |
 //! | `seeds.rs` | the subdivision: boxes, normal cones, starting points on the sides of sub-patches |
 //! | `march.rs` | marching along a branch: predictor, corrector, step control, stops |
+//! | `contacts.rs` | tangent contacts: single points and lines of contact, grouped and ordered |
 //! | `fit.rs` | the fitted curves of a branch: a cubic Hermite spline through its points and tangents |
 //! | `mod.rs` | [`QuerySurface::intersect_surface`], [`QuerySurface::intersect_plane`], the branches' kinds and fitted curves |
 
+mod contacts;
 mod fit;
 mod march;
 mod seeds;
@@ -34,6 +36,9 @@ use system::{newton, norm, surface_jet, PlaneSection, TwoSurfaces, K};
 /// Tangent points closer than this fraction of the scale are one contact (and chained into a
 /// line of contact when they spread further).
 const TANGENT_MERGE: f64 = 1.0 / 64.0;
+/// The points of a line of contact are kept at least this fraction of the scale apart (the
+/// subdivision's finest sub-patches are `1/512` of it across).
+const LINE_SPACING: f64 = 1.0 / 512.0;
 
 /// One branch of the intersection of two surfaces (or of a plane section).
 #[derive(Debug, Clone, PartialEq)]
@@ -385,7 +390,7 @@ fn assemble(
     let cover = 4.0 * tol + 1e-9 * scale;
     let mut traced: Vec<Traced> = Vec::new();
     // tangent candidates: (x, p, sine)
-    let mut touch: Vec<([f64; K], [f64; 3], f64)> = Vec::new();
+    let mut touch: Vec<contacts::Touch> = Vec::new();
     let mut grid = SegmentGrid::new(cover, march::MAX_STEP * scale);
     let k = sys.k();
     for x in &found.seeds {
@@ -456,64 +461,15 @@ fn assemble(
     for b in fitted {
         out.extend(b?);
     }
-    // tangent points: single-linkage groups within the merge distance
-    let merge = TANGENT_MERGE * scale;
-    let mut group: Vec<usize> = (0..touch.len()).collect();
-    for i in 0..touch.len() {
-        for j in 0..i {
-            if dist(&touch[i].1, &touch[j].1) <= merge {
-                let (gi, gj) = (group[i], group[j]);
-                for g in &mut group {
-                    if *g == gi {
-                        *g = gj;
-                    }
-                }
-            }
-        }
-    }
-    let mut ids: Vec<usize> = group.clone();
-    ids.sort_unstable();
-    ids.dedup();
-    for id in ids {
-        let members: Vec<&([f64; K], [f64; 3], f64)> = touch
-            .iter()
-            .zip(&group)
-            .filter(|(_, g)| **g == id)
-            .map(|(m, _)| m)
-            .collect();
-        // the two members farthest apart
-        let mut far = (0.0, 0, 0);
-        for (i, a) in members.iter().enumerate() {
-            for (j, b) in members.iter().enumerate().take(i) {
-                let d = dist(&a.1, &b.1);
-                if d > far.0 {
-                    far = (d, i, j);
-                }
-            }
-        }
-        let chosen: Vec<&([f64; K], [f64; 3], f64)> = if far.0 <= merge {
-            // one contact: the most tangent member
-            members
-                .iter()
-                .min_by(|a, b| a.2.total_cmp(&b.2))
-                .map(|m| vec![*m])
-                .unwrap_or_default()
-        } else {
-            // a line of contact: the members in order along it
-            let (a, b) = (members[far.1].1, members[far.2].1);
-            let dir = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-            let along = |p: &[f64; 3]| (0..3).map(|c| (p[c] - a[c]) * dir[c]).sum::<f64>();
-            let mut m = members.clone();
-            m.sort_by(|x, y| along(&x.1).total_cmp(&along(&y.1)));
-            m.dedup_by(|x, y| dist(&x.1, &y.1) <= tol);
-            m
-        };
+    // tangent points: thinned, grouped into contacts and lines of contact
+    for g in contacts::group(touch, TANGENT_MERGE * scale, LINE_SPACING * scale) {
+        let chosen = &g.members;
         let order = chosen
             .first()
             .map_or(1, |m| contact_order(march, probe, &m.0));
         out.push(IntersectionBranch {
             kind: Contact::Tangent { order },
-            closed: false,
+            closed: g.closed,
             points: chosen.iter().map(|m| m.1).collect(),
             uv_a: chosen.iter().map(|m| [m.0[0], m.0[1]]).collect(),
             uv_b: if two {
@@ -581,5 +537,7 @@ fn contact_order(
         .unwrap_or(1)
 }
 
+#[cfg(test)]
+mod known_answers;
 #[cfg(test)]
 mod tests;

@@ -534,8 +534,11 @@ pub(super) fn plane_seeds(
             continue;
         }
         let at = |i: usize, j: usize| c[i * (q + 1) + j];
+        // monotone beyond rounding: differences that are rounding noise (the distance constant
+        // along a line of contact) may all share a sign by chance, and the sides alone would
+        // then miss the contact's double roots
         let mono =
-            |diffs: Vec<f64>| diffs.iter().all(|&d| d > 0.0) || diffs.iter().all(|&d| d < 0.0);
+            |diffs: Vec<f64>| diffs.iter().all(|&d| d > zero) || diffs.iter().all(|&d| d < -zero);
         let du: Vec<f64> = (0..p)
             .flat_map(|i| (0..=q).map(move |j| (i, j)))
             .map(|(i, j)| at(i + 1, j) - at(i, j))
