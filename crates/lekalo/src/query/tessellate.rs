@@ -163,11 +163,13 @@ impl Mesh {
     /// Where the normal is undefined, a pole or a collapsed edge (`|S_u × S_v|` at most
     /// [`MESH_NORMAL_RTOL`] times `max |S_u| · max |S_v|` over the mesh's vertices: at a pole
     /// of a rational surface `S_u` is not zero but rounding, whose cross product points
-    /// anywhere), the vertex takes the limit of the normal along the non-degenerate direction,
+    /// anywhere), a vertex where `|S_u|` or `|S_v|` is itself at most [`MESH_NORMAL_RTOL`] of
+    /// its largest (a collapsed edge, not a fold) takes the limit of the normal along the
+    /// non-degenerate direction,
     /// `±S_uv × S_v` on a collapsed edge `v = const` (`±S_u × S_uv` on `u = const`; the
     /// first-order expansion of `S_u` off the edge, `docs/theory/queries.md`, "Vertex normals"):
-    /// at a sphere's pole the axis. Where that limit is degenerate too (a collapse of higher
-    /// order) it takes the mean of the surface's unit normals at the `(u, v)`
+    /// at a sphere's pole the axis. Elsewhere, or where that limit is degenerate too (a
+    /// collapse of higher order), it takes the mean of the surface's unit normals at the `(u, v)`
     /// centres of its triangles (off the pole: a triangle with two vertices on a pole has no
     /// area in space, but its centre is inside the patch), and where these are undefined too
     /// the area-weighted average of its triangles' normals as [`Mesh::vertex_normals`] does;
@@ -198,7 +200,8 @@ impl Mesh {
         let len = |a: &[f64]| a.iter().map(|x| x * x).sum::<f64>().sqrt();
         // S_u × S_v at each vertex, and the largest |S_u| and |S_v|
         let (mut su_max, mut sv_max) = (0.0_f64, 0.0_f64);
-        let crosses: Vec<Option<[f64; 3]>> = self
+        // S_u × S_v, |S_u| and |S_v| at each vertex
+        let crosses: Vec<Option<([f64; 3], f64, f64)>> = self
             .uv
             .iter()
             .map(|&[u, v]| {
@@ -208,7 +211,11 @@ impl Mesh {
                 let (su, sv) = (d.point(2), d.point(1));
                 su_max = su_max.max(len(su));
                 sv_max = sv_max.max(len(sv));
-                Some(cross([su[0], su[1], su[2]], [sv[0], sv[1], sv[2]]))
+                Some((
+                    cross([su[0], su[1], su[2]], [sv[0], sv[1], sv[2]]),
+                    len(su),
+                    len(sv),
+                ))
             })
             .collect();
         let floor = MESH_NORMAL_RTOL * su_max * sv_max;
@@ -225,11 +232,16 @@ impl Mesh {
             .into_iter()
             .zip(&self.uv)
             .map(|(c, &[u, v])| {
-                let c = c?;
+                let (c, su, sv) = c?;
                 if len(&c) > floor {
                     return Some(c.map(|x| sign * x));
                 }
-                // a pole: the limit of the normal along the non-degenerate direction
+                // a pole (one derivative itself at the noise level, a collapsed edge): the
+                // limit of the normal along the non-degenerate direction; S_u and S_v that
+                // are merely near parallel (a fold) are left to the neighbouring samples
+                if su > MESH_NORMAL_RTOL * su_max && sv > MESH_NORMAL_RTOL * sv_max {
+                    return None;
+                }
                 let (u, v) = (into(u, u0, u1), into(v, v0, v1));
                 super::pole_normal::limit_normal(surface, u, v, dom).map(|n| n.map(|x| sign * x))
             })
