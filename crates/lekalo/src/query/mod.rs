@@ -34,6 +34,7 @@ mod length;
 mod mesh;
 mod offset;
 mod pieces;
+mod pole_normal;
 mod project;
 mod surface;
 mod tessellate;

@@ -163,7 +163,13 @@ impl Mesh {
     /// Where the normal is undefined, a pole or a collapsed edge (`|S_u × S_v|` at most
     /// [`MESH_NORMAL_RTOL`] times `max |S_u| · max |S_v|` over the mesh's vertices: at a pole
     /// of a rational surface `S_u` is not zero but rounding, whose cross product points
-    /// anywhere), the vertex takes the mean of the surface's unit normals at the `(u, v)`
+    /// anywhere), a vertex where `|S_u|` or `|S_v|` is itself at most [`MESH_NORMAL_RTOL`] of
+    /// its largest (a collapsed edge, not a fold) takes the limit of the normal along the
+    /// non-degenerate direction,
+    /// `±S_uv × S_v` on a collapsed edge `v = const` (`±S_u × S_uv` on `u = const`; the
+    /// first-order expansion of `S_u` off the edge, `docs/theory/queries.md`, "Vertex normals"):
+    /// at a sphere's pole the axis. Elsewhere, or where that limit is degenerate too (a
+    /// collapse of higher order), it takes the mean of the surface's unit normals at the `(u, v)`
     /// centres of its triangles (off the pole: a triangle with two vertices on a pole has no
     /// area in space, but its centre is inside the patch), and where these are undefined too
     /// the area-weighted average of its triangles' normals as [`Mesh::vertex_normals`] does;
@@ -194,7 +200,8 @@ impl Mesh {
         let len = |a: &[f64]| a.iter().map(|x| x * x).sum::<f64>().sqrt();
         // S_u × S_v at each vertex, and the largest |S_u| and |S_v|
         let (mut su_max, mut sv_max) = (0.0_f64, 0.0_f64);
-        let crosses: Vec<Option<[f64; 3]>> = self
+        // S_u × S_v, |S_u| and |S_v| at each vertex
+        let crosses: Vec<Option<([f64; 3], f64, f64)>> = self
             .uv
             .iter()
             .map(|&[u, v]| {
@@ -204,7 +211,11 @@ impl Mesh {
                 let (su, sv) = (d.point(2), d.point(1));
                 su_max = su_max.max(len(su));
                 sv_max = sv_max.max(len(sv));
-                Some(cross([su[0], su[1], su[2]], [sv[0], sv[1], sv[2]]))
+                Some((
+                    cross([su[0], su[1], su[2]], [sv[0], sv[1], sv[2]]),
+                    len(su),
+                    len(sv),
+                ))
             })
             .collect();
         let floor = MESH_NORMAL_RTOL * su_max * sv_max;
@@ -216,14 +227,27 @@ impl Mesh {
             let c = cross([su[0], su[1], su[2]], [sv[0], sv[1], sv[2]]);
             (len(&c) > floor).then(|| c.map(|x| sign * x))
         };
+        let dom = surface.domain();
         let mut given: Vec<Option<[f64; 3]>> = crosses
             .into_iter()
-            .map(|c| {
-                let c = c?;
-                (len(&c) > floor).then(|| c.map(|x| sign * x))
+            .zip(&self.uv)
+            .map(|(c, &[u, v])| {
+                let (c, su, sv) = c?;
+                if len(&c) > floor {
+                    return Some(c.map(|x| sign * x));
+                }
+                // a pole (one derivative itself at the noise level, a collapsed edge): the
+                // limit of the normal along the non-degenerate direction; S_u and S_v that
+                // are merely near parallel (a fold) are left to the neighbouring samples
+                if su > MESH_NORMAL_RTOL * su_max && sv > MESH_NORMAL_RTOL * sv_max {
+                    return None;
+                }
+                let (u, v) = (into(u, u0, u1), into(v, v0, v1));
+                super::pole_normal::limit_normal(surface, u, v, dom).map(|n| n.map(|x| sign * x))
             })
             .collect();
-        // a degenerate vertex: the mean of the unit normals at the (u, v) centres of its
+        // a degenerate vertex without a limit (a collapse of higher order): the mean of the
+        // unit normals at the (u, v) centres of its
         // triangles, inside the patch where the normal is defined (a pole's triangles have
         // two vertices on the pole, no area in space, but their centres are off it)
         if given.iter().any(Option::is_none) {
@@ -255,9 +279,12 @@ impl Mesh {
 }
 
 /// The relative size of `|S_u × S_v|`, against the largest `|S_u| · |S_v|` of a mesh, below
-/// which [`Mesh::surface_normals`] takes a vertex's normal from its triangles: rounding
+/// which [`Mesh::surface_normals`] takes a vertex's normal as the limit at a pole: rounding
 /// leaves derivatives of about `1e-15` of their size at a pole, whose direction is then
-/// noise; a normal accepted above `1e-8` is off by at most about `1e-7` radians.
+/// noise; a normal accepted above a bound `t` is off by up to about `ε / t` radians
+/// (`ε` ≈ `1e-16`, the rounding of the cross product), and the limit taken below it by up
+/// to about `t` (the vertex's distance from the pole, relatively, in the first-order
+/// expansion): `t = 1e-8` ≈ `√ε` balances the two, both about `1e-8` radians.
 pub const MESH_NORMAL_RTOL: f64 = 1e-8;
 
 /// `a × b`.
@@ -799,8 +826,11 @@ pub(crate) mod tests {
             let p = m.vertices.point(k);
             if p[2] > 1.0 - 1e-12 {
                 poles += 1;
-                // the triangles round the pole lean by less than their size
-                assert!(n[2].abs() > 0.9, "the pole's averaged normal {n:?}");
+                // the limit normal along the non-degenerate direction: the axis
+                assert!(
+                    (n[2].abs() - 1.0).abs() < 1e-12,
+                    "the pole's limit normal {n:?}"
+                );
                 continue;
             }
             // the sphere's normal at p is ±p
