@@ -123,6 +123,27 @@ def test_fit_gradients():
         assert_rel(gb[i], central(pi, batch[i], 1e-3), "smoothing, batched data")
 
 
+def test_fit_least_squares_knot_gradients():
+    """The knots of fit_least_squares: the gradient lekalo.least_squares_knot_vjp's, summed over
+    a batch of data sets, against central differences in the interior knots."""
+    rng = np.random.default_rng(4)
+    x = rng.permutation(np.linspace(0, 1, 30))
+    y = np.stack([np.sin(3 * x), np.cos(2 * x)], axis=-1) + 0.05 * rng.standard_normal((30, 2))
+    t = np.array([0, 0, 0, 0, 0.3, 0.7, 1, 1, 1, 1.0])
+    w = rng.uniform(0.5, 2, 30)
+    batch = np.stack([y, 2 * y[::-1] - 1])
+    (gq, gt), g = grads(lambda q, k: lt.fit_least_squares(q, x, k, 3, w=w), t64(batch), t64(t))
+
+    def plain(k):
+        return sum(np.sum(lekalo.fit_least_squares(batch[i], x, k, 3, w=w)[0].control * g[i]) for i in range(2))
+
+    assert_rel(gt, knot_central(plain, t, 3), "least-squares knots, batch summed")
+    assert np.all(gt.numpy()[:4] == 0.0) and np.all(gt.numpy()[6:] == 0.0)
+    for i in range(2):
+        pi = lambda q: np.sum(lekalo.fit_least_squares(q, x, t, 3, w=w)[0].control * g[i])  # noqa: E731
+        assert_rel(gq[i], central(pi, batch[i], 1e-3), "least squares, data beside the knots")
+
+
 def test_fit_backward_applies_the_forward_factorisation(monkeypatch):
     """A fit's backward pass applies the map its forward pass factored (`factors=`), with the
     bits of the VJP kernels that factor again; values bit-for-bit the fits'."""
@@ -165,9 +186,10 @@ def test_bad_input_says_so():
     knots, ctrl, u = curve_case()
     with pytest.raises(lekalo.InputError, match="float64"):
         lt.bspline_eval(knots, torch.tensor(ctrl, dtype=torch.float32), u, 3)
-    # the knots of the evaluations may ask for their gradient, those of the fits may not
-    with pytest.raises(lekalo.InputError, match="knots"):
-        lt.fit_least_squares(t64(ctrl), u, t64(knots), 3)
+    # the knots of the evaluations and of the least-squares fit may ask for their gradient, the
+    # fits' parameters and weights may not
+    with pytest.raises(lekalo.InputError, match="parameters"):
+        lt.fit_least_squares(t64(ctrl), t64(u), knots, 3)
     with pytest.raises(lekalo.InputError, match="lam > 0"):
         lt.fit_smoothing(u, t64(ctrl))
 
