@@ -10,10 +10,12 @@
 //!
 //! This file holds the derivatives of evaluation (curves, NURBS, surfaces, tensor products);
 //! `derivatives/fits.rs` those of the fits (interpolation, least squares, smoothing) with
-//! respect to their data, and `derivatives/knots.rs` those of curve and surface evaluation with
+//! respect to their data, `derivatives/fit_knots.rs` those of interpolation and least squares
+//! with respect to the knots, and `derivatives/knots.rs` those of curve and surface evaluation with
 //! respect to the knots; `derivatives/rational_nets.rs` those of NURBS surface and tensor-NURBS
 //! evaluation with respect to the net, the weights and the parameters.
 
+mod fit_knots;
 mod fits;
 mod knots;
 mod rational_nets;
@@ -32,6 +34,7 @@ use crate::surfaces::bspline_surface_arg;
 /// Registers the functions of this module.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     fits::register(m)?;
+    fit_knots::register(m)?;
     knots::register(m)?;
     rational_nets::register(m)?;
     m.add_function(wrap_pyfunction!(bspline_curve_jvp, m)?)?;

@@ -16,6 +16,7 @@ jax = pytest.importorskip("jax")
 import jax.numpy as jnp  # noqa: E402
 
 from jax_support import assert_rel, x64  # noqa: E402,F401  (x64: autouse fixture)
+from derivative_checks import interior, knot_central  # noqa: E402
 from lekalo.jax import bspline_eval, bspline_surface_eval, nurbs_eval, tensor_bspline_eval  # noqa: E402
 
 P = 3
@@ -37,30 +38,6 @@ def surface_case():
     u = np.array([0.1, 0.3, 0.5, 0.85])
     v = np.array([0.2, 0.45, 0.7, 0.1])
     return ku, kv, net, u, v
-
-
-def interior(knots, degree):
-    """The mask of the interior knots (the derivative's; the ends are held fixed)."""
-    m = np.zeros(len(knots), bool)
-    m[degree + 1 : len(knots) - degree - 1] = True
-    return m
-
-
-def knot_central(f, knots, degree, h=1e-6):
-    """The Jacobian of ``f(knots)`` in the knots by central differences in the interior knots,
-    zero columns for the end knots; shape ``f(knots).shape + knots.shape``."""
-    cols = []
-    mask = interior(knots, degree)
-    base = np.asarray(f(knots))
-    for k in range(len(knots)):
-        if not mask[k]:
-            cols.append(np.zeros_like(base))
-            continue
-        up, down = knots.copy(), knots.copy()
-        up[k] += h
-        down[k] -= h
-        cols.append((np.asarray(f(up)) - np.asarray(f(down))) / (2 * h))
-    return np.stack(cols, axis=-1)
 
 
 def curve_values(knots, ctrl, u):

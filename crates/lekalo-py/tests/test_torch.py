@@ -1,18 +1,18 @@
 """lekalo.torch: values bit-for-bit lekalo's, gradients from backward() against central finite
 differences (relative 1e-7), batches of control points and data sets, and the errors for what
 is not supported. Skipped without PyTorch, which the project's test command does not install
-(docs/differentiable.md, "PyTorch"); run it with torch installed:
-`python -m pytest crates/lekalo-py/tests/test_torch.py`."""
+(docs/differentiable.md, "PyTorch"); `scripts/test-torch.sh` installs it in an environment of
+its own and runs this file and test_torch_nurbs_nets.py."""
 
 import numpy as np
 import pytest
 
-torch = pytest.importorskip("torch")
+torch = pytest.importorskip("torch", reason="PyTorch is not installed here; scripts/test-torch.sh runs these tests with it")
 
 import lekalo  # noqa: E402
 from lekalo import torch as lt  # noqa: E402
 
-from test_jax import assert_rel, central  # noqa: E402
+from derivative_checks import assert_rel, central, knot_central  # noqa: E402
 
 
 def t64(a, grad=True):
@@ -81,7 +81,7 @@ def test_nurbs_and_tensor_knot_gradients():
     batch = np.stack([ctrl, -2 * ctrl])
     (gk, gc), g = grads(lambda k, c: lt.nurbs_eval(k, c, w, u, 3), t64(knots), t64(batch))
     plain = lambda k: sum(np.sum(lekalo.nurbs_curve_jvp(3, k, batch[i], w, u)[0] * g[i]) for i in range(2))  # noqa: E731
-    assert_rel(gk[4:6], central(plain, knots, 1e-6)[4:6], "NURBS interior knots, batch summed")
+    assert_rel(gk, knot_central(plain, knots, 3), "NURBS knots, batch summed")
     assert np.all(gk.numpy()[:4] == 0.0) and np.all(gk.numpy()[6:] == 0.0)
     want = sum(lekalo.nurbs_curve_knot_vjp(3, knots, batch[i], w, u, np.ascontiguousarray(g[i])) for i in range(2))
     assert_rel(gk, want, "NURBS knots, the kernel")
@@ -95,9 +95,7 @@ def test_nurbs_and_tensor_knot_gradients():
             moved = kt[:a] + [k] + kt[a + 1 :]
             return np.sum(lekalo.TensorBSpline(moved, coef, list(degrees))(pts) * g)
 
-        p = degrees[a]
-        inner = slice(p + 1, len(kt[a]) - p - 1)
-        assert_rel(gks[a][inner], central(plain, kt[a], 1e-6)[inner], f"tensor knots[{a}]")
+        assert_rel(gks[a], knot_central(plain, kt[a], degrees[a]), f"tensor knots[{a}]")
     want = lekalo.tensor_bspline_knot_vjp(kt, coef, list(degrees), pts, g)
     for a in range(3):
         assert_rel(gks[a], want[a], f"tensor knots[{a}], the kernel")
@@ -123,6 +121,27 @@ def test_fit_gradients():
     for i in range(2):
         pi = lambda q: np.sum(lekalo.fit_smoothing(x, q, w, 1e-3)[0].control * g[i])  # noqa: E731
         assert_rel(gb[i], central(pi, batch[i], 1e-3), "smoothing, batched data")
+
+
+def test_fit_least_squares_knot_gradients():
+    """The knots of fit_least_squares: the gradient lekalo.least_squares_knot_vjp's, summed over
+    a batch of data sets, against central differences in the interior knots."""
+    rng = np.random.default_rng(4)
+    x = rng.permutation(np.linspace(0, 1, 30))
+    y = np.stack([np.sin(3 * x), np.cos(2 * x)], axis=-1) + 0.05 * rng.standard_normal((30, 2))
+    t = np.array([0, 0, 0, 0, 0.3, 0.7, 1, 1, 1, 1.0])
+    w = rng.uniform(0.5, 2, 30)
+    batch = np.stack([y, 2 * y[::-1] - 1])
+    (gq, gt), g = grads(lambda q, k: lt.fit_least_squares(q, x, k, 3, w=w), t64(batch), t64(t))
+
+    def plain(k):
+        return sum(np.sum(lekalo.fit_least_squares(batch[i], x, k, 3, w=w)[0].control * g[i]) for i in range(2))
+
+    assert_rel(gt, knot_central(plain, t, 3), "least-squares knots, batch summed")
+    assert np.all(gt.numpy()[:4] == 0.0) and np.all(gt.numpy()[6:] == 0.0)
+    for i in range(2):
+        pi = lambda q: np.sum(lekalo.fit_least_squares(q, x, t, 3, w=w)[0].control * g[i])  # noqa: E731
+        assert_rel(gq[i], central(pi, batch[i], 1e-3), "least squares, data beside the knots")
 
 
 def test_fit_backward_applies_the_forward_factorisation(monkeypatch):
@@ -167,9 +186,10 @@ def test_bad_input_says_so():
     knots, ctrl, u = curve_case()
     with pytest.raises(lekalo.InputError, match="float64"):
         lt.bspline_eval(knots, torch.tensor(ctrl, dtype=torch.float32), u, 3)
-    # the knots of the evaluations may ask for their gradient, those of the fits may not
-    with pytest.raises(lekalo.InputError, match="knots"):
-        lt.fit_least_squares(t64(ctrl), u, t64(knots), 3)
+    # the knots of the evaluations and of the least-squares fit may ask for their gradient, the
+    # fits' parameters and weights may not
+    with pytest.raises(lekalo.InputError, match="parameters"):
+        lt.fit_least_squares(t64(ctrl), t64(u), knots, 3)
     with pytest.raises(lekalo.InputError, match="lam > 0"):
         lt.fit_smoothing(u, t64(ctrl))
 

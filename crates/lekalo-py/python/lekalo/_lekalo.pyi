@@ -513,6 +513,28 @@ def interpolation_jvp(
 def interpolation_vjp(
     degree: int, knots: ArrayLike, params: ArrayLike, control_cotangent: ArrayLike
 ) -> Array: ...
+def interpolation_knot_jvp(
+    degree: int, knots: ArrayLike, params: ArrayLike, points: ArrayLike, knots_tangent: ArrayLike
+) -> Tuple[Array, Array]: ...
+def interpolation_knot_vjp(
+    degree: int, knots: ArrayLike, params: ArrayLike, points: ArrayLike, control_cotangent: ArrayLike
+) -> Array: ...
+def least_squares_knot_jvp(
+    degree: int,
+    knots: ArrayLike,
+    params: ArrayLike,
+    points: ArrayLike,
+    knots_tangent: ArrayLike,
+    w: Optional[ArrayLike] = None,
+) -> Tuple[Array, Array]: ...
+def least_squares_knot_vjp(
+    degree: int,
+    knots: ArrayLike,
+    params: ArrayLike,
+    points: ArrayLike,
+    control_cotangent: ArrayLike,
+    w: Optional[ArrayLike] = None,
+) -> Array: ...
 def least_squares_jvp(
     degree: int,
     knots: ArrayLike,

@@ -11,7 +11,7 @@ lekalo's NumPy kernels, differentiable in reverse mode (``loss.backward()``,
 - ``tensor_nurbs_eval(knots, control_points, weights, x, degrees)``: ``N``-variate tensor NURBS;
 - ``fit_least_squares(points, params, t, k=3, *, w=None)`` and
   ``fit_smoothing(x, y, w=None, lam=...)``: the control points of the fits, differentiable with
-  respect to the data.
+  respect to the data (the least-squares fit also with respect to its knots).
 
 Each forward calls the library's kernel (the values are bit-for-bit lekalo's evaluation or fit)
 and each backward its vector-Jacobian product (``lekalo.bspline_curve_vjp``, ...,
@@ -31,9 +31,10 @@ Limits, each with a clear error:
   ``lekalo.bspline_curve_knot_vjp``, ``lekalo.nurbs_curve_knot_vjp``,
   ``lekalo.bspline_surface_knot_vjp``, ``lekalo.tensor_bspline_knot_vjp``,
   ``lekalo.nurbs_surface_knot_vjp``, ``lekalo.tensor_nurbs_knot_vjp``; the ``degree + 1``
-  first and last of a direction are held fixed, their gradient zero); the knots of the fits,
-  the degrees, fit parameters and weights are constants (plain arrays or tensors whose
-  gradient is not asked for);
+  first and last of a direction are held fixed, their gradient zero), and so may the knots of
+  ``fit_least_squares`` (``lekalo.least_squares_knot_vjp``); the knots of ``fit_smoothing``
+  (its ``x``), the degrees, fit parameters and weights are constants (plain arrays or tensors
+  whose gradient is not asked for);
 - runs on the CPU: tensors on another device are copied to the host and back.
 """
 
@@ -494,8 +495,8 @@ def tensor_nurbs_eval(knots, control_points, weights, x, degrees):
 
 class _LeastSquares(torch.autograd.Function):
     @staticmethod
-    def forward(ctx, q, params, t, k, w):
-        y = _np(q)
+    def forward(ctx, q, params, t_t, k, w):
+        y, t = _np(q), _np(t_t)
         batch = tuple(y.shape[:-2])
 
         def one(yy):
@@ -503,32 +504,44 @@ class _LeastSquares(torch.autograd.Function):
 
         # the values and the map of their one banded QR, which the backward pass applies
         control, factors = _looped(one, batch, (y, True))
-        ctx.args = (params, t, k, w, batch, factors)
+        ctx.save_for_backward(t_t)
+        ctx.args = (params, t, k, w, batch, factors, y)
         return _out(control, q)
 
     @staticmethod
     def backward(ctx, g):
-        params, t, k, w, batch, factors = ctx.args
+        (t_t,) = ctx.saved_tensors
+        params, t, k, w, batch, factors, y = ctx.args
+        gn = _np(g)
+        gq = gk = None
+        if ctx.needs_input_grad[0]:
 
-        def one(gg, f):
-            return _lekalo.least_squares_vjp(k, t, params, gg, w, factors=f)
+            def one(gg, f):
+                return _lekalo.least_squares_vjp(k, t, params, gg, w, factors=f)
 
-        gq = _looped(one, batch, (_np(g), True), (factors, True))
-        return _out(gq, g), None, None, None, None
+            gq = _out(_looped(one, batch, (gn, True), (factors, True)), g)
+        if ctx.needs_input_grad[2]:
+
+            def knot(yy, gg):
+                return _lekalo.least_squares_knot_vjp(k, t, params, yy, gg, w)
+
+            gk = _out(_batch_sum(_looped(knot, batch, (y, True), (gn, True)), batch), t_t)
+        return gq, None, gk, None, None
 
 
 def fit_least_squares(points, params, t, k=3, *, w=None):
     """The control points (``(..., len(t) - k - 1, dim)``) of the weighted least-squares
     B-spline of degree ``k`` on the knots ``t`` through ``points`` (``(..., m, dim)``: leading
     axes are a batch of data sets) at ``params``: ``lekalo.fit_least_squares(points, params, t,
-    k, w=w)[0].control``, bit for bit. Differentiable with respect to ``points``; ``params``,
-    ``t``, ``k`` and ``w`` are constants."""
+    k, w=w)[0].control``, bit for bit. Differentiable with respect to ``points`` and ``t`` (the
+    interior knots, by ``lekalo.least_squares_knot_vjp``, summed over a batch; the ``k + 1``
+    first and last are held fixed); ``params``, ``k`` and ``w`` are constants."""
     name = "fit_least_squares"
     q = _tensor(points, "points", name)
     if q.ndim < 2:
         raise InputError(f"lekalo.torch.{name}: points must be (..., m, dim), got {tuple(q.shape)}")
     params = _constant(params, "the parameters", name)
-    t = _constant(t, "the knots", name)
+    t = _knots(t, "the knots", name)
     w = None if w is None else _constant(w, "the weights", name)
     return _LeastSquares.apply(q, params, t, int(k), w)
 

@@ -57,7 +57,7 @@ where
 }
 
 /// An optional weights argument `w` (`None` as absent).
-fn weights_arg(w: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Vec<f64>>> {
+pub(super) fn weights_arg(w: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Vec<f64>>> {
     w.filter(|w| !w.is_none()).map(|w| vec1(w, "w")).transpose()
 }
 
@@ -73,7 +73,7 @@ fn interpolation_map(
     InterpolationMap::new(degree, &kv, &ts).map_err(lib_err)
 }
 
-fn dim_of(a: &FloatArray<'_>, what: &'static str) -> PyResult<usize> {
+pub(super) fn dim_of(a: &FloatArray<'_>, what: &'static str) -> PyResult<usize> {
     Ok(a.points(what)?.dim())
 }
 
@@ -120,7 +120,7 @@ pub(crate) fn interpolation_vjp<'py>(
 
 /// `shape` with its first axis replaced by `len` (a tangent or cotangent of points mapped to
 /// another number of points).
-fn with_len(shape: &[usize], len: usize) -> Vec<usize> {
+pub(super) fn with_len(shape: &[usize], len: usize) -> Vec<usize> {
     let mut s = shape.to_vec();
     if let Some(first) = s.first_mut() {
         *first = len;

@@ -56,9 +56,9 @@ fn fit_data<'a>(
 /// ```
 #[derive(Debug, Clone)]
 pub struct LeastSquaresFit<'a> {
-    degree: usize,
-    knots: KnotVector,
-    data: FitData<'a>,
+    pub(super) degree: usize,
+    pub(super) knots: KnotVector,
+    pub(super) data: FitData<'a>,
 }
 
 impl<'a> LeastSquaresFit<'a> {

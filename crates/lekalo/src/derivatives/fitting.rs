@@ -437,8 +437,23 @@ impl LeastSquaresMap {
         }
     }
 
+    /// The weights `W` as the map applies them (divided by the largest; `G = BᵀWB` with them).
+    pub(super) fn weights(&self) -> &[f64] {
+        &self.rows.weights
+    }
+
+    /// `BᵀW y` for `y` of `N × dim`, point-major (no shift).
+    pub(super) fn transpose_weighted(&self, y: &[f64], dim: usize) -> Vec<f64> {
+        self.rows.transpose_weighted(y, dim)
+    }
+
+    /// `W B x` for `x` of `n × dim`, point-major (no shift).
+    pub(super) fn weighted(&self, x: &[f64], dim: usize) -> Vec<f64> {
+        self.rows.weighted(x, dim)
+    }
+
     /// `x ← (RᵀR)⁻¹ x`: a forward sweep with `Rᵀ`, a backward sweep with `R` (banded).
-    fn solve_normal(&self, x: &mut [f64], dim: usize) {
+    pub(super) fn solve_normal(&self, x: &mut [f64], dim: usize) {
         let (n, bw, r) = (self.rows.n, self.rows.width, &self.triangle);
         for i in 0..n {
             for c in 0..dim {

@@ -34,9 +34,9 @@ use crate::points::Points;
 /// ```
 #[derive(Debug, Clone)]
 pub struct Interpolant {
-    map: InterpolationMap,
-    curve: BSplineCurve,
-    params: Vec<f64>,
+    pub(super) map: InterpolationMap,
+    pub(super) curve: BSplineCurve,
+    pub(super) params: Vec<f64>,
 }
 
 impl Interpolant {

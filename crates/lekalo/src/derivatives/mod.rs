@@ -41,6 +41,10 @@
 //!   factorisation, forward or transposed).
 //! - `fits.rs`: [`LeastSquaresFit`] and [`SmoothingFit`], the two fits as functions of their
 //!   data on flat buffers: the fits' control points bit for bit, and `fitting.rs`'s JVP and VJP.
+//! - `fit_knots.rs`: [`Interpolant::knot_jvp`], [`Interpolant::knot_vjp`],
+//!   [`LeastSquaresFit::knot_jvp`] and [`LeastSquaresFit::knot_vjp`], the derivatives of the two
+//!   fits with respect to the knots (the normal equations differentiated, solved with the fits'
+//!   factorisations); `fit_knots_tests.rs` their tests.
 //! - `geometry.rs`: [`ArcLengthGradient`] and [`ClosestParameters`], the derivatives of a
 //!   B-spline curve's arc length (with respect to the control points) and of the parameters of
 //!   its closest points to given points (with respect to the control points and the points);
@@ -65,6 +69,9 @@ mod borrowed;
 mod checks;
 mod control_cotangent;
 mod curve;
+mod fit_knots;
+#[cfg(test)]
+mod fit_knots_tests;
 mod fits;
 mod fitting;
 mod geometry;

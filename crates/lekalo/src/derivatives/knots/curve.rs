@@ -6,6 +6,7 @@ use crate::curve::BSplineCurve;
 use crate::derivatives::checks::{check_input, check_len};
 use crate::derivatives::curve::{combine, PointBasis};
 use crate::error::{check_finite, Result};
+use crate::knots::KnotVector;
 
 impl BSplineCurve {
     /// Forward-mode derivative (JVP) of [`BSplineCurve::eval_batch`] with respect to the
@@ -133,4 +134,55 @@ impl BSplineCurve {
         }
         Ok(())
     }
+}
+
+/// The transpose, in the coefficients, of the knot JVP of evaluation at `ts`: for a knot
+/// tangent `τ̇` the knot JVP is linear in the coefficients, `Ċ(t_i) = Σ_j Ḃ_{ij} c_j` with
+/// `Ḃ = Σ_k τ̇_k ∂B/∂τ_k` (the derivative of the basis matrix `B_{ij} = N_{j,p}(t_i)`), and this
+/// returns `Ḃᵀ v` (`n × dim`, point-major) for `v` of `ts.len() × dim`. The weights are those of
+/// [`KnotWeights`]: `∂C(t)/∂τ_k = Σ_j w_{k,j} (c_j − c_{j−1})`, so `w_{k,j}` goes to `c_j`
+/// and `−w_{k,j}` to `c_{j−1}` (`docs/theory/derivatives.md`, "Knots of the fits"). The
+/// conventions of [`BSplineCurve::eval_batch_knot_jvp`] (interior knots only, one-sided at
+/// multiple knots). O(m·p·(p² + p·dim)).
+///
+/// # Errors
+/// [`crate::Error::ParameterOutOfDomain`] at the first parameter outside the domain.
+pub(in crate::derivatives) fn knot_jvp_transposed(
+    knots: &KnotVector,
+    degree: usize,
+    ts: &[f64],
+    knot_tangent: &[f64],
+    v: &[f64],
+    dim: usize,
+) -> Result<Vec<f64>> {
+    let t = knots.as_slice();
+    let n = t.len() - degree - 1;
+    let w = degree + 2;
+    let mut out = vec![0.0; n * dim];
+    let mut cursor = knots.span_cursor(degree);
+    let mut weights = KnotWeights::new(degree);
+    for (&x, vi) in ts.iter().zip(v.chunks_exact(dim)) {
+        let span = cursor.find(x)?;
+        weights.at(t, n, span, x);
+        for k in weights.knots() {
+            let tk = knot_tangent[k];
+            if tk == 0.0 {
+                continue;
+            }
+            let row =
+                &weights.weights[(k - weights.first_knot) * w..(k - weights.first_knot + 1) * w];
+            for (jj, &wk) in row.iter().enumerate() {
+                if wk == 0.0 {
+                    continue;
+                }
+                let j = weights.first_diff + jj; // j ≥ k − p ≥ 1
+                let s = tk * wk;
+                for (c, &vc) in vi.iter().enumerate() {
+                    out[j * dim + c] += s * vc;
+                    out[(j - 1) * dim + c] -= s * vc;
+                }
+            }
+        }
+    }
+    Ok(out)
 }

@@ -55,6 +55,8 @@ mod tests;
 
 use crate::basis::{basis_funs_into, BasisScratch};
 
+pub(super) use curve::knot_jvp_transposed;
+
 /// The knot-derivative weights at one parameter: for each knot `τ_k` that moves `f(t)`, the
 /// weights `w_{k,j} = −N_{j,p,τ*}(t) / (τ_{j+p} − τ_j)` of the differences `c_j − c_{j−1}`,
 /// `∂f(t)/∂τ_k = Σ_j w_{k,j} (c_j − c_{j−1})`. Scratch sized once for a degree.
