@@ -24,7 +24,7 @@ use crate::Direction;
 /// How far inside its bound every row of the program is asked to stay (rows scaled to unit
 /// largest coefficient, coefficients in units of the data's spread), so that the interior
 /// point's answer keeps every constraint exactly rather than to the solver's tolerance.
-const MARGIN: f64 = 1e-10;
+pub(super) const MARGIN: f64 = 1e-10;
 
 /// The least-squares surface `z(u, v)` over a grid of values (as
 /// [`surface_grid_least_squares_at`]: `nu × nv` values, value `(i, j)` at `i·nv + j`, at the
@@ -359,7 +359,7 @@ pub(super) fn kronecker_upper(
 /// `x = (c − center)/Y`, with the index of the shape each comes from; rows equal after scaling
 /// to unit largest coefficient (a corner's value is a coefficient of every cell around it)
 /// kept once.
-fn program_rows(
+pub(super) fn program_rows(
     space: &Space<'_>,
     center: f64,
     y: f64,

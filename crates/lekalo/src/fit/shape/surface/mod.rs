@@ -15,12 +15,14 @@
 //! | `check.rs` | [`surface_shape_violations`]: the Bernstein condition of a surface per constraint |
 //! | `fits.rs` | [`constrained_surface_grid_least_squares`], [`constrained_surface_scattered_least_squares`]: the unconstrained fit first, the program when it breaks a constraint |
 //! | `smoothing.rs` | [`constrained_surface_grid_smoothing_spline`], [`constrained_surface_grid_smoothing_condition`], [`SurfaceGridSmoothing`]: the grid's smoothing spline (penalty weights given, by GCV, or for a residual `s`) kept in shape, its penalised objective the program's |
+//! | `whitened.rs` | the smoothing program in whitened variables: each direction's penalised Gram matrix factored, the correction to the unconstrained minimum solved with the identity for its Hessian (crate-private) |
 
 mod cells;
 mod check;
 mod constraints;
 mod fits;
 mod smoothing;
+mod whitened;
 
 pub use check::surface_shape_violations;
 pub use constraints::{SurfaceShape, SurfaceShapeConstraint, SurfaceShapeConstraints};

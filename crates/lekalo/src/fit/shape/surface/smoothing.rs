@@ -13,6 +13,7 @@ use super::constraints::SurfaceShapeConstraints;
 use super::fits::{
     basis_and_gram, check_values, grid_linear, kronecker_upper, solve, BasisRows, Scales,
 };
+use super::whitened::{solve_whitened, Factor};
 use crate::error::{Error, Result};
 use crate::fit::{FitData, Lambda, Smoother};
 use crate::knots::KnotVector;
@@ -44,8 +45,9 @@ pub struct SurfaceGridSmoothing {
 /// `‖(B_u ⊗ B_v) c − z‖² + cᵀ((G_u + λ_uΩ_u) ⊗ (G_v + λ_vΩ_v) − G_u ⊗ G_v) c`
 ///
 /// (`G_a = B_aᵀB_a`, `Ω_a = ∫ B_a'' B_a''ᵀ`, clamped cubic B-splines with a knot at every grid
-/// coordinate), whose Hessian `(G_u + λ_uΩ_u) ⊗ (G_v + λ_vΩ_v)` is passed to Clarabel as the
-/// quadratic program's sparse matrix, over the surfaces whose cells satisfy the Bernstein
+/// coordinate), whose Hessian `(G_u + λ_uΩ_u) ⊗ (G_v + λ_vΩ_v)` is whitened by each
+/// direction's banded factors about the unconstrained minimum before Clarabel sees it (so
+/// that heavy and light weights are solved alike), over the surfaces whose cells satisfy the Bernstein
 /// condition of each shape (as [`constrained_surface_grid_least_squares`](super::constrained_surface_grid_least_squares):
 /// sufficient everywhere; for bicubic cells a slightly stricter problem than the shape itself).
 ///
@@ -75,7 +77,9 @@ pub struct SurfaceGridSmoothing {
 /// The errors of [`tensor_grid_smoothing_spline`]; [`Error::Dimension`] for values that are not
 /// numbers; [`Error::NegativeSmoothing`] for a given `λ_a < 0` or not finite,
 /// [`Error::InvalidArgument`] for `λ_a = 0` (the constrained program needs the penalty in both
-/// directions); the constraint errors of
+/// directions), and for weights so light in both directions that the interior point cannot
+/// solve the program to full accuracy (`docs/theory/fitting.md#shape-constrained-smoothing-of-surfaces`;
+/// the message names the weights and asks for a heavier one); the constraint errors of
 /// [`constrained_surface_grid_least_squares`](super::constrained_surface_grid_least_squares).
 pub fn constrained_surface_grid_smoothing_spline(
     values: PointsRef<'_>,
@@ -323,54 +327,90 @@ impl<'a> Grid<'a> {
                 residual: free.residual,
             });
         }
-        // ½cᵀ((G_u + λ_uΩ_u) ⊗ (G_v + λ_vΩ_v))c − ((B_u ⊗ B_v)ᵀz)ᵀc in c = center + Y·x
-        let penalised = |a: usize| -> Vec<f64> {
-            self.gram[a]
-                .iter()
-                .zip(&self.omega[a])
-                .map(|(g, o)| g + lams[a] * o)
-                .collect()
+        // ½xᵀ((G_u + λ_uΩ_u) ⊗ (G_v + λ_vΩ_v))x + qᵀx in x = (c − center)/Y, whitened by each
+        // direction's factors about the unconstrained minimum x₀
+        let factor = |a: usize, n: usize, whiten: Option<bool>| {
+            Factor::new(&self.gram[a], &self.omega[a], lams[a], n, whiten).map_err(|_| {
+                Error::InvalidArgument {
+                    what: What::of(Arg::Lambda, "λ (penalty weight)"),
+                    reason: format!(
+                        "{} in {} with shape constraints: so light that the penalty no longer \
+                         decides the two coefficients the grid leaves free in that direction \
+                         (its factor loses its pivots); give a heavier weight there",
+                        readable(&lams[a]),
+                        ["u", "v"][a]
+                    ),
+                }
+            })
         };
-        let upper = kronecker_upper(&penalised(0), &penalised(1), (ncu, ncv), (3, 3));
         let z = self.values.as_slice();
         let center = z[0];
-        let lin = grid_linear(
-            z,
-            (uu.len(), vv.len()),
-            (&self.rows[0], &self.rows[1]),
-            (ncu, ncv),
-            center,
-            self.scale.y,
-        );
-        // the objective at the unconstrained minimum x₀ = (plain − center)/Y, ½ linᵀx₀ (the
-        // gradient vanishes there): heavy weights leave it tiny beside the Hessian's largest
-        // entries, so the program is scaled by it
-        let objective = plain
+        let x0: Vec<f64> = plain
             .control_points()
             .as_slice()
             .iter()
-            .zip(&lin)
-            .map(|(c, l)| l * (c - center) / self.scale.y)
-            .sum::<f64>()
-            .abs()
-            * 0.5;
-        let net = solve(
+            .map(|c| (c - center) / self.scale.y)
+            .collect();
+        // each direction whitened where its penalty is the stiffer part; should the interior
+        // point stop short there, no direction whitened, then both
+        let auto = (factor(0, ncu, None)?, factor(1, ncv, None)?);
+        let chosen = [auto.0.whitened(), auto.1.whitened()];
+        let mut tried = vec![chosen];
+        let mut result = solve_whitened(
             &space,
-            &upper,
-            &lin,
+            (&auto.0, &auto.1),
+            &x0,
             (center, &self.scale),
             constraints,
-            Some(objective),
-        )
-        .map_err(|e| match e {
+        );
+        for whiten in [false, true] {
+            if !matches!(result, Err(Error::IllConditioned { .. }))
+                || tried.contains(&[whiten, whiten])
+            {
+                continue;
+            }
+            tried.push([whiten, whiten]);
+            let (fu, fv) = (factor(0, ncu, Some(whiten))?, factor(1, ncv, Some(whiten))?);
+            result = solve_whitened(&space, (&fu, &fv), &x0, (center, &self.scale), constraints);
+        }
+        if matches!(result, Err(Error::IllConditioned { .. })) {
+            // last, the net itself with the Hessian `(G_u + λ_uΩ_u) ⊗ (G_v + λ_vΩ_v)`, scaled
+            // by the objective at the unconstrained minimum: very light weights in both
+            // directions, whose flat directions the whitened rows cannot resolve
+            let penalised = |a: usize| -> Vec<f64> {
+                self.gram[a]
+                    .iter()
+                    .zip(&self.omega[a])
+                    .map(|(g, o)| g + lams[a] * o)
+                    .collect()
+            };
+            let upper = kronecker_upper(&penalised(0), &penalised(1), (ncu, ncv), (3, 3));
+            let lin = grid_linear(
+                z,
+                (uu.len(), vv.len()),
+                (&self.rows[0], &self.rows[1]),
+                (ncu, ncv),
+                center,
+                self.scale.y,
+            );
+            let objective = x0.iter().zip(&lin).map(|(x, l)| l * x).sum::<f64>().abs() * 0.5;
+            result = solve(
+                &space,
+                &upper,
+                &lin,
+                (center, &self.scale),
+                constraints,
+                Some(objective),
+            );
+        }
+        let net = result.map_err(|e| match e {
             Error::IllConditioned { .. } => Error::InvalidArgument {
                 what: What::of(Arg::Lambda, "λ (penalty weight)"),
                 reason: format!(
-                    "({}, {}) with shape constraints: the penalised program's Hessian is too \
-                     ill-conditioned there for the interior point to reach its minimum (the \
-                     penalty is many orders stiffer, or softer, than the data in some \
-                     direction); give weights nearer the data's scale (smaller if these are \
-                     heavy)",
+                    "({}, {}) with shape constraints: the interior point cannot solve the \
+                     program to full accuracy at these weights (whitened or not); give a \
+                     heavier weight in a direction whose weight is very light (the spline then \
+                     all but interpolates the grid there)",
                     readable(&lams[0]),
                     readable(&lams[1])
                 ),

@@ -718,3 +718,4 @@ fn a_monotone_surface_between_boxed_bounds_that_contradict_it_is_named() {
 }
 
 mod smoothing;
+mod weights;
