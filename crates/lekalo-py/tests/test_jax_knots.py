@@ -1,7 +1,8 @@
 """Derivatives with respect to the knots, from NumPy (``lekalo.bspline_curve_knot_jvp`` /
 ``_vjp``, ``lekalo.bspline_surface_knot_jvp`` / ``_vjp``, ``lekalo.nurbs_curve_knot_jvp`` /
 ``_vjp``, ``lekalo.tensor_bspline_knot_jvp`` / ``_vjp``) and from JAX (``bspline_eval``,
-``bspline_surface_eval``, ``nurbs_eval`` and ``tensor_bspline_eval`` under ``jax.grad``,
+``bspline_surface_eval``, ``nurbs_eval``, ``tensor_bspline_eval``, ``interpolate`` and
+``fit_least_squares`` under ``jax.grad``,
 ``jacfwd``, ``jacrev``, ``jit`` and ``vmap``, in float64): against central differences of the
 evaluation in the interior knots (relative 1e-7), the JAX Jacobians against the library's
 kernels, the end knots held fixed (zero gradient). The mathematics (multiple knots, parameters
@@ -17,7 +18,7 @@ import jax.numpy as jnp  # noqa: E402
 
 from jax_support import assert_rel, x64  # noqa: E402,F401  (x64: autouse fixture)
 from derivative_checks import interior, knot_central  # noqa: E402
-from lekalo.jax import bspline_eval, bspline_surface_eval, nurbs_eval, tensor_bspline_eval  # noqa: E402
+from lekalo.jax import bspline_eval, bspline_surface_eval, fit_least_squares, interpolate, nurbs_eval, tensor_bspline_eval  # noqa: E402
 
 P = 3
 
@@ -406,3 +407,145 @@ def test_second_derivatives_in_the_knots_raise():
     kt, net, x = tensor_case()
     with pytest.raises(NotImplementedError, match="first derivatives"):
         jax.jacfwd(jax.grad(lambda k: jnp.sum(tensor_bspline_eval((k, kt[1], kt[2]), net, x, DEGREES))))(kt[0])
+
+
+# -- interpolation in its knots --------------------------------------------------------------
+
+
+INTERP_KNOTS = np.array([0, 0, 0, 0, 0.23, 0.46, 0.71, 1, 1, 1, 1.0])  # off every parameter
+
+
+def interp_case():
+    x = np.array([0.0, 0.1, 0.3, 0.55, 0.62, 0.85, 1.0])
+    return x, np.stack([np.sin(3 * x) + 2, x * x - 0.5 * x], axis=-1)
+
+
+def interpolated(knots, x, y):
+    return lekalo.interpolation_jvp(P, knots, x, y)
+
+
+@pytest.mark.parametrize("mode", ["jacfwd", "jacrev"])
+@pytest.mark.parametrize("jit", [False, True])
+def test_interpolation_knot_jacobians(mode, jit):
+    x, y = interp_case()
+    f = lambda k: interpolate(y, x, k, P)  # noqa: E731
+    jac = getattr(jax, mode)(f)
+    got = (jax.jit(jac) if jit else jac)(INTERP_KNOTS)
+    want = knot_central(lambda k: interpolated(k, x, y), INTERP_KNOTS, P)  # (7, 2, 11)
+    assert_rel(got, want, f"{mode}, jit={jit}")
+    assert np.all(np.asarray(got)[..., ~interior(INTERP_KNOTS, P)] == 0), "end knots held fixed"
+    # 1-D data: 1-D control points, the first coordinate's Jacobian
+    g1 = getattr(jax, mode)(lambda k: interpolate(y[:, 0], x, k, P))(INTERP_KNOTS)
+    assert_rel(g1, want[:, 0], f"{mode}, 1-D data")
+
+
+def test_interpolation_knots_with_data_and_parameters_and_the_kernels():
+    x, y = interp_case()
+    rng = np.random.default_rng(8)
+    dk, dy = rng.uniform(-1, 1, INTERP_KNOTS.shape), rng.uniform(-1, 1, y.shape)
+    dx = np.concatenate([[0.0], rng.uniform(-1, 1, 5), [0.0]])
+    # every tangent at once: the sum of the three directional derivatives
+    h = 1e-6
+    fd = (interpolated(INTERP_KNOTS + h * dk * interior(INTERP_KNOTS, P), x + h * dx, y + h * dy)
+          - interpolated(INTERP_KNOTS - h * dk * interior(INTERP_KNOTS, P), x - h * dx, y - h * dy)) / (2 * h)
+    f = jax.jit(lambda k, p, q: interpolate(q, p, k, P))
+    _, tangent = jax.jvp(f, (INTERP_KNOTS, x, y), (dk, dx, dy))
+    assert_rel(tangent, fd, "JVP in knots, parameters and data")
+    # the knot part is the library's kernel, and the VJP its transpose
+    _, knots_only = jax.jvp(lambda k: interpolate(y, x, k, P), (INTERP_KNOTS,), (dk,))
+    assert_rel(knots_only, lekalo.interpolation_knot_jvp(P, INTERP_KNOTS, x, y, dk)[1], "knot JVP")
+    g = rng.uniform(-1, 1, y.shape)
+    _, pull = jax.vjp(f, INTERP_KNOTS, x, y)
+    gk, gx, gy = pull(jnp.asarray(g))
+    assert_rel(gk, lekalo.interpolation_knot_vjp(P, INTERP_KNOTS, x, y, g), "knot VJP")
+    assert np.all(np.asarray(gk)[~interior(INTERP_KNOTS, P)] == 0)
+    assert_rel(float(gk @ dk + gx @ dx + jnp.sum(gy * dy)), float(np.sum(g * fd)), "VJP the JVP's transpose")
+
+
+def test_interpolation_knot_gradient_under_vmap():
+    x, y = interp_case()
+    target = np.linspace(-1, 1, y.size).reshape(y.shape)
+    loss = lambda k: jnp.sum((interpolate(y, x, k, P) - target) ** 2)  # noqa: E731
+    loss_np = lambda k: np.sum((interpolated(k, x, y) - target) ** 2)  # noqa: E731
+    shifted = INTERP_KNOTS.copy()
+    shifted[4:7] += np.array([0.02, -0.03, 0.04])
+    batch = np.stack([INTERP_KNOTS, shifted])
+    for mode, got in (
+        ("vmap(grad)", jax.vmap(jax.grad(loss))(batch)),
+        ("jit(vmap(grad))", jax.jit(jax.vmap(jax.grad(loss)))(batch)),
+        ("grad(sum(vmap))", jax.grad(lambda b: jnp.sum(jax.vmap(loss)(b)))(batch)),
+    ):
+        for i in range(2):
+            assert_rel(got[i], knot_central(loss_np, batch[i], P), f"{mode}, element {i}")
+    # the knots batched with the data
+    ys = np.stack([y, 2 * y - 1])
+    jac = jax.vmap(jax.jacrev(lambda k, q: interpolate(q, x, k, P)))(batch, ys)
+    for i in range(2):
+        want = knot_central(lambda k: interpolated(k, x, ys[i]), batch[i], P)
+        assert_rel(jac[i], want, f"vmap(jacrev) with the data, element {i}")
+
+
+def test_interpolation_knot_gradient_compiles_to_the_ffi_target():
+    x, y = interp_case()
+    grad = jax.grad(lambda k: jnp.sum(interpolate(y, x, k, P) ** 2))
+    text = jax.jit(grad).lower(INTERP_KNOTS).as_text()
+    assert "lekalo_interpolate_vjp" in text and "callback" not in text
+    with pytest.raises(NotImplementedError, match="first derivatives"):
+        jax.hessian(lambda k: jnp.sum(interpolate(y, x, k, P)))(INTERP_KNOTS)
+
+
+# -- the least-squares fit in its knots ------------------------------------------------------
+
+
+def lsq_knot_case():
+    rng = np.random.default_rng(5)
+    x = rng.permutation(np.linspace(0, 1, 40))
+    y = np.stack([np.sin(4 * x) + 10, np.cos(2 * x) * x], axis=-1) + 0.05 * rng.standard_normal((40, 2))
+    return x, y, rng.uniform(0.5, 2.5, 40)
+
+
+def lsq_fitted(knots, x, y, w=None):
+    return lekalo.least_squares_knot_jvp(P, knots, x, y, np.zeros(len(knots)), w)[0]
+
+
+@pytest.mark.parametrize("mode", ["jacfwd", "jacrev"])
+@pytest.mark.parametrize("jit", [False, True])
+@pytest.mark.parametrize("weighted", [False, True])
+def test_least_squares_knot_jacobians(mode, jit, weighted):
+    x, y, w = lsq_knot_case()
+    w = w if weighted else None
+    f = lambda k: fit_least_squares(y, x, k, P, w=w)  # noqa: E731
+    jac = getattr(jax, mode)(f)
+    got = (jax.jit(jac) if jit else jac)(INTERP_KNOTS)
+    want = knot_central(lambda k: lsq_fitted(k, x, y, w), INTERP_KNOTS, P)
+    assert_rel(got, want, f"{mode}, jit={jit}, weighted={weighted}")
+    assert np.all(np.asarray(got)[..., ~interior(INTERP_KNOTS, P)] == 0), "end knots held fixed"
+
+
+def test_least_squares_knots_with_data_kernels_and_vmap():
+    x, y, w = lsq_knot_case()
+    rng = np.random.default_rng(9)
+    dk, dy = rng.uniform(-1, 1, INTERP_KNOTS.shape), rng.uniform(-1, 1, y.shape)
+    f = jax.jit(lambda k, q: fit_least_squares(q, x, k, P, w=w))
+    vals, tangent = jax.jvp(f, (INTERP_KNOTS, y), (dk, dy))
+    assert np.array_equal(np.asarray(vals), lsq_fitted(INTERP_KNOTS, x, y, w))
+    want = lekalo.least_squares_knot_jvp(P, INTERP_KNOTS, x, y, dk, w)[1] + lekalo.least_squares_jvp(P, INTERP_KNOTS, x, dy, w)
+    assert_rel(tangent, want, "JVP in the knots and the data")
+    g = rng.uniform(-1, 1, vals.shape)
+    gk, gy = jax.vjp(f, INTERP_KNOTS, y)[1](jnp.asarray(g))
+    assert_rel(gk, lekalo.least_squares_knot_vjp(P, INTERP_KNOTS, x, y, g, w), "knot VJP")
+    assert_rel(gy, lekalo.least_squares_vjp(P, INTERP_KNOTS, x, g, w), "data VJP")
+    target = np.linspace(-1, 1, g.size).reshape(g.shape)
+    loss = lambda k: jnp.sum((fit_least_squares(y, x, k, P, w=w) - target) ** 2)  # noqa: E731
+    loss_np = lambda k: np.sum((lsq_fitted(k, x, y, w) - target) ** 2)  # noqa: E731
+    shifted = INTERP_KNOTS.copy()
+    shifted[4:7] += np.array([0.02, -0.03, 0.04])
+    batch = np.stack([INTERP_KNOTS, shifted])
+    for mode, got in (
+        ("vmap(grad)", jax.vmap(jax.grad(loss))(batch)),
+        ("jit(vmap(grad))", jax.jit(jax.vmap(jax.grad(loss)))(batch)),
+    ):
+        for i in range(2):
+            assert_rel(got[i], knot_central(loss_np, batch[i], P), f"{mode}, element {i}")
+    text = jax.jit(jax.grad(loss)).lower(INTERP_KNOTS).as_text()
+    assert "lekalo_fit_least_squares_vjp" in text and "callback" not in text

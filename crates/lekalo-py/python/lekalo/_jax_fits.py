@@ -1,7 +1,7 @@
 """Control points from data as JAX functions: ``interpolate``, ``fit_least_squares`` and
 ``fit_smoothing`` of ``lekalo.jax``, differentiable with respect to the data (and the
-interpolation's parameters) by the library's linearisations and adjoint solves with the same
-banded factorisation (``docs/theory/derivatives.md``). Each runs as lekalo's XLA FFI targets
+interpolation's parameters and knots, and the least-squares fit's knots) by the library's
+linearisations and adjoint solves with the same banded factorisation (``docs/theory/derivatives.md``). Each runs as lekalo's XLA FFI targets
 (values, JVP and VJP compiled into the program, no host callback)."""
 
 from __future__ import annotations
@@ -27,8 +27,11 @@ def _interp_out_shape(res):
     return res[1].shape
 
 
-# values, JVP and VJP as the FFI targets ``lekalo_interpolate_*`` (``xla_ffi/interpolate.rs``)
-_INTERP = Kernel("interpolate", "lekalo_interpolate", ("data", "parameter"), _interp_out_shape)
+# values, JVP and VJP as the FFI targets ``lekalo_interpolate_*`` (``xla_ffi/interpolate.rs``); the
+# knots are differentiable, so they are passed among the arrays (a kind of their own)
+_INTERP = Kernel(
+    "interpolate", "lekalo_interpolate", ("knots", "data", "parameter"), _interp_out_shape
+)
 
 
 def _points_at_params(name, k, points, params, t):
@@ -65,7 +68,10 @@ def interpolate(points, params, t, k=3):
     ``docs/theory/derivatives.md``, "Interpolation"). Values, JVP and VJP are lekalo's XLA FFI
     targets, compiled into the program (no host callback). At a parameter on an interior knot
     where ``C'`` jumps (a knot of multiplicity ``k`` or more), the right-hand derivative is
-    used. ``t`` and ``k`` are constants. The parameters must satisfy the Schoenberg–Whitney
+    used. Differentiable with respect to the interior knots ``t[k + 1 : m]`` as well:
+    ``Ṗ = -A⁻¹ (Ȧ P)``, ``τ̄ = -J_Pᵀ (A⁻ᵀ P̄)`` (``Interpolant::knot_jvp``, ``::knot_vjp``,
+    "Knots of the fits"); the tangent of the ``k + 1`` first and last knots is ignored and their
+    cotangent is zero. ``k`` is a constant. The parameters must satisfy the Schoenberg–Whitney
     condition (``t[r] < params[r] < t[r + k + 1]``, ends excepted); otherwise lekalo's error
     reaches the caller as ``jax.errors.JaxRuntimeError``.
     """
@@ -83,7 +89,7 @@ def interpolate(points, params, t, k=3):
             f"lekalo.jax.{name}: points of shape {q.shape} are empty; interpolation of degree "
             f"{k} needs at least {k + 1} points of at least one coordinate"
         )
-    out = _INTERP((("degree", k),), (t,), (q, params))
+    out = _INTERP((("degree", k),), (), (t, q, params))
     return out[:, 0] if scalar else out
 
 
@@ -93,7 +99,7 @@ def interpolate(points, params, t, k=3):
 @partial(jax.custom_jvp, nondiff_argnums=(0, 1))
 def _constant(name, what, x):
     """``x``, refusing a derivative with respect to it: the fits are differentiated with respect
-    to the data values only."""
+    to the data values (and the least-squares fit's knots) only."""
     return x
 
 
@@ -102,7 +108,8 @@ def _constant_jvp(name, what, primals, tangents):
     if not isinstance(tangents[0], SymbolicZero):
         raise NotImplementedError(
             f"lekalo.jax.{name}: derivatives with respect to {what} are not supported (the fit "
-            "is differentiated with respect to the data values only); pass them as constants "
+            "is differentiated with respect to the data values only, and the least-squares "
+            "fit's knots); pass them as constants "
             "(close over them, or wrap them in jax.lax.stop_gradient)"
         )
     return primals[0], jnp.zeros_like(primals[0])
@@ -111,22 +118,24 @@ def _constant_jvp(name, what, primals, tangents):
 @lru_cache(maxsize=None)
 def _least_squares_kernel(k):
     """The FFI targets ``lekalo_fit_least_squares_*`` (``xla_ffi/fits.rs``) for degree ``k``:
-    residuals ``(t, params, w, points)`` (with the factors before the points in the
-    derivatives'), control points ``(len(t) - k - 1, dim)``. Under differentiation the values
-    and the factors come from ``lekalo_fit_least_squares_factor``, whose banded QR the JVP and
-    VJP reuse (``lekalo::derivatives::LeastSquaresMap::to_flat``)."""
+    residuals ``(params, w, t, points)`` (with the factors before the knots in the
+    derivatives'), control points ``(len(t) - k - 1, dim)``; the knots and the points are the
+    differentiable kinds. Under differentiation the values and the factors come from
+    ``lekalo_fit_least_squares_factor``, whose banded QR the data's JVP and VJP reuse
+    (``lekalo::derivatives::LeastSquaresMap::to_flat``); the knots' refit
+    (``LeastSquaresFit::knot_jvp``, ``::knot_vjp``)."""
 
     def out_shape(res):
-        t, q = res[0], res[-1]
+        t, q = res[-2], res[-1]
         return q.shape[:-2] + (t.shape[-1] - k - 1, q.shape[-1])
 
     def factor_shape(res):
-        t, q = res[0], res[-1]
+        t, q = res[-2], res[-1]
         n_flat = _lekalo.least_squares_map_flat_len(q.shape[-2], t.shape[-1] - k - 1, k)
         return q.shape[:-2] + (n_flat,)
 
     return Kernel(
-        "fit_least_squares", "lekalo_fit_least_squares", ("data",), out_shape,
+        "fit_least_squares", "lekalo_fit_least_squares", ("knots", "data"), out_shape,
         factor_shape=factor_shape,
     )
 
@@ -188,9 +197,13 @@ def fit_least_squares(points, params, t, k=3, *, w=None):
     respect to ``points``: the fit is linear in them, ``P = (BᵀWB)⁻¹ BᵀW Q``, so
     ``Ṗ = (BᵀWB)⁻¹ BᵀW Q̇`` and ``Q̄ = W B (BᵀWB)⁻¹ P̄``, with the sparse rows of ``B`` and the
     triangle of lekalo's banded QR (``lekalo::derivatives::LeastSquaresFit``,
-    ``docs/theory/derivatives.md``, "Fits"). Values, JVP and VJP are lekalo's XLA FFI targets,
-    compiled into the program (no host callback). ``params``, ``t``, ``w`` and ``k`` are
-    constants (a derivative with respect to them raises ``NotImplementedError``). A problem
+    ``docs/theory/derivatives.md``, "Fits"); and with respect to the interior knots
+    ``t[k + 1 : len(t) - k - 1]``: ``Ṗ = -G⁻¹ (BᵀW Ḃ P + Ḃᵀ W r)``, ``G = BᵀWB``, ``r = B P - Q``
+    (``LeastSquaresFit::knot_jvp``, ``::knot_vjp``, "Knots of the fits"; the tangent of the
+    ``k + 1`` first and last knots is ignored and their cotangent is zero). Values, JVP and VJP
+    are lekalo's XLA FFI targets, compiled into the program (no host callback). ``params``,
+    ``w`` and ``k`` are constants (a derivative with respect to them raises
+    ``NotImplementedError``). A problem
     with the data (a basis function with no data under it, NaN values, parameters outside the
     knots) reaches the caller as ``jax.errors.JaxRuntimeError`` carrying lekalo's message.
     """
@@ -204,10 +217,10 @@ def fit_least_squares(points, params, t, k=3, *, w=None):
         )
     weighted, w = _weights_arg(w, m, name)
     _nonempty(name, "points", q, "the fit needs data points of at least one coordinate")
-    what = "the parameters, the knots or the weights"
-    t, params, w = (_constant(name, what, a) for a in (t, params, w))
+    what = "the parameters or the weights"
+    params, w = (_constant(name, what, a) for a in (params, w))
     static = (("degree", k), ("weighted", int(weighted)))
-    out = _least_squares_kernel(k)(static, (t, params, w), (q,))
+    out = _least_squares_kernel(k)(static, (params, w), (t, q))
     return out[:, 0] if scalar else out
 
 

@@ -15,10 +15,11 @@
   tensor-product NURBS in ``N`` variables, differentiable also with respect to the weights;
 - ``fit_least_squares(points, params, t, k=3, *, w=None)`` and
   ``fit_smoothing(x, y, w=None, lam=...)``: the control points of the least-squares fit and of
-  the smoothing spline, differentiable with respect to the data;
+  the smoothing spline, differentiable with respect to the data (and the least-squares fit's
+  interior knots);
 - ``interpolate(points, params, t, k=3)``: the control points of the interpolant through
-  ``points`` at ``params`` on the knots ``t``, differentiable with respect to the data and the
-  parameters;
+  ``points`` at ``params`` on the knots ``t``, differentiable with respect to the data, the
+  parameters and the interior knots;
 - ``arc_length(knots, control_points, degree)``: a B-spline curve's length, differentiable with
   respect to the knots and the control points;
 - ``closest_parameter(knots, control_points, x, degree)``: the parameters of the curve's
@@ -29,7 +30,7 @@ The evaluations are differentiable, in forward and reverse mode, with respect to
 points, the parameters and the knots (the interior ones: the ``degree + 1`` first and last
 knots of a direction bound the domain and are held fixed, their gradient zero;
 ``docs/theory/derivatives.md``, "Knots"). The degrees are constants, and so are the knots of
-the fits, of ``interpolate`` and of the geometric functions.
+``fit_smoothing``.
 
 The six evaluations run inside the compiled program: their values, JVPs and VJPs are XLA
 custom calls (FFI targets written against XLA's C ABI in the native module,
@@ -58,9 +59,9 @@ Requirements and limits, each with a clear error:
 - float64 only: enable it with ``jax.config.update("jax_enable_x64", True)`` first;
 - first derivatives: a second derivative (``jax.hessian``, ``jacfwd(jacrev(...))``) raises
   ``NotImplementedError``;
-- derivatives with respect to the knots of ``interpolate`` and the fits raise
-  ``NotImplementedError``: pass them as constants (``arc_length`` and ``closest_parameter``
-  are differentiable in their knots);
+- derivatives with respect to the knots of ``fit_smoothing`` raise ``NotImplementedError``:
+  pass them as constants (``interpolate``, ``fit_least_squares``, ``arc_length`` and
+  ``closest_parameter`` are differentiable in their knots);
 - parameters must lie in the domain (and NURBS weights be positive): otherwise the error
   raised inside lekalo's FFI target reaches the caller carrying lekalo's
   message, which names the parameter and the domain (eagerly and under ``jit``), as

@@ -1,27 +1,31 @@
 //! The least-squares fit on given knots and parameters and the smoothing spline with a given
-//! `λ` as XLA FFI handlers, with their JVP and VJP with respect to the data values
+//! `λ` as XLA FFI handlers, with their JVP and VJP with respect to the data values, and the
+//! least-squares fit's with respect to its knots too
 //! (`lekalo::derivatives::{LeastSquaresFit, SmoothingFit}`, `docs/theory/derivatives.md`,
-//! "Fits"):
+//! "Fits" and "Knots of the fits"):
 //!
 //! | target | arguments | attributes | results |
 //! |---|---|---|---|
-//! | `lekalo_fit_least_squares_eval` | knots `(n + p + 1,)`, params `(m,)`, w `(m,)`, points `(m, dim)` | `degree`, `weighted` | `P` `(n, dim)` |
+//! | `lekalo_fit_least_squares_eval` | params `(m,)`, w `(m,)`, knots `(n + p + 1,)`, points `(m, dim)` | `degree`, `weighted` | `P` `(n, dim)` |
 //! | `lekalo_fit_least_squares_factor` | as `…_eval` | as `…_eval` | `P`, F `((p + 3) m + (p + 1) n,)` |
 //! | `lekalo_fit_smoothing_eval` | x `(m,)`, w `(m,)`, λ `()`, y `(m, dim)` | `weighted` | `P` `(m + 2, dim)` |
 //! | `lekalo_fit_smoothing_factor` | as `…_eval` | as `…_eval` | `P`, F `(11 m + 14,)` |
-//! | `lekalo_fit_least_squares_jvp` | knots, params, w, F, points, [`Q̇` `(m, dim)`] | the same, `with_data` | `Ṗ` as `P` |
-//! | `lekalo_fit_least_squares_vjp` | knots, params, w, F, points, `P̄` as `P` | the same, `with_data` | [`Q̄` `(m, dim)`] |
+//! | `lekalo_fit_least_squares_jvp` | params, w, F, knots, points, [`τ̇` as knots], [`Q̇` `(m, dim)`] | the same, `with_knots`, `with_data` | `Ṗ` as `P` |
+//! | `lekalo_fit_least_squares_vjp` | params, w, F, knots, points, `P̄` as `P` | the same, `with_knots`, `with_data` | [`τ̄` as knots], [`Q̄` `(m, dim)`] |
 //! | `lekalo_fit_smoothing_jvp` | x, w, λ, F, y, [`Q̇`] | the same, `with_data` | `Ṗ` as `P` |
 //! | `lekalo_fit_smoothing_vjp` | x, w, λ, F, y, `P̄` | the same, `with_data` | [`Q̄`] |
 //!
-//! The bracketed buffers are present when `with_data` is true; `w` is read only when `weighted`
+//! The bracketed buffers are present when the attribute `with_<kind>` of their kind is true; `w` is read only when `weighted`
 //! is true (unweighted is the fit without weights, not weights of 1); every buffer may have the
 //! same leading batch axes. The control points are bit for bit `lekalo.fit_least_squares`'s and
 //! `lekalo.fit_smoothing`'s. A fit's forward pass under differentiation is its `…_factor`
 //! target: the values and F, the map of the same factorisation as numbers
 //! ([`LeastSquaresMap::to_flat`]: the rows of `B` and the triangle of their banded QR;
 //! [`SmoothingMap::to_flat`]: the rows and the `UᵀDU` of `BᵀWB + λΩ`), which its JVP and VJP
-//! apply without factoring again (the same bits as factoring again).
+//! apply without factoring again (the same bits as factoring again). The least-squares fit's
+//! knots come after its factors, among the differentiable operands; their derivatives
+//! ([`LeastSquaresFit::knot_jvp`], [`LeastSquaresFit::knot_vjp`]: the tangent of the `p + 1`
+//! first and last knots ignored, their cotangent zero) factor the fit again.
 
 use lekalo::derivatives::{LeastSquaresFit, LeastSquaresMap, SmoothingFit, SmoothingMap};
 
@@ -46,19 +50,19 @@ pub(super) mod least_squares {
         vjp: vjp_body,
     }
 
-    use super::{run_eval, run_factor, run_jvp, run_vjp, Factors, Fit};
+    use super::{run_eval, run_factor, Factors, Fit};
     use crate::xla_ffi::abi::Call;
 
-    /// Knots, params, weights and points, with their core axes.
-    const RESIDUALS: [(&str, usize); 4] = [("t", 1), ("params", 1), ("w", 1), ("points", 2)];
+    /// Params, weights, knots and points, with their core axes.
+    const RESIDUALS: [(&str, usize); 4] = [("params", 1), ("w", 1), ("t", 1), ("points", 2)];
 
-    /// The derivatives' residuals: knots, params, weights, the factors of the forward pass and
-    /// the points.
+    /// The derivatives' residuals: params, weights, the factors of the forward pass, knots and
+    /// the points (the knots and the points the differentiable kinds).
     const FACTORED: [(&str, usize); 5] = [
-        ("t", 1),
         ("params", 1),
         ("w", 1),
         ("factors", 1),
+        ("t", 1),
         ("points", 2),
     ];
 
@@ -76,6 +80,23 @@ pub(super) mod least_squares {
         Ok(Fit::Factored(Factors::LeastSquares { degree }))
     }
 
+    /// The fit of batch element `b` from the derivatives' residuals (for the knots).
+    fn refit<'r>(
+        fit: Fit,
+        res: &'r [super::In<'_>],
+        sizes: &[usize],
+        dim: usize,
+        b: usize,
+    ) -> Result<super::LeastSquaresFit<'r>, String> {
+        let Fit::LeastSquares { degree, weighted } = fit else {
+            return Err("not a least-squares fit".into());
+        };
+        let operand = |i: usize| super::element(res[i].data, sizes[i], b);
+        let w = weighted.then(|| operand(1));
+        super::LeastSquaresFit::new(degree, operand(3), operand(0), operand(4), dim, w)
+            .map_err(|e| e.to_string())
+    }
+
     fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
         run_eval(fit(call)?, &RESIDUALS, call)
     }
@@ -85,11 +106,78 @@ pub(super) mod least_squares {
     }
 
     fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
-        run_jvp(factored(call)?, &FACTORED, call)
+        let (map, plain) = (factored(call)?, fit(call)?);
+        let present = super::flags(call, ["with_knots", "with_data"]);
+        let Call { args, rets, .. } = call;
+        let (res, [dt, dq]) = super::tangents(args, FACTORED.len(), present)?;
+        let (batch, sizes, dim) = super::layout(res, &FACTORED)?;
+        let (st, sq) = (sizes[3], sizes[4]);
+        let tangent = super::single(rets)?;
+        let size = batch.size("control-point tangent", tangent.dims, 2)?;
+        if let Some(a) = dt {
+            batch.expect("knot tangent", a.dims, 1, st)?;
+        }
+        if let Some(a) = dq {
+            batch.expect("data tangent", a.dims, 2, sq)?;
+        }
+        for b in 0..batch.count {
+            let mut out = match dq {
+                Some(a) => {
+                    let op = super::Op::Jvp(super::element(a.data, sq, b));
+                    super::apply(map, res, &sizes, dim, b, op)?
+                }
+                None => vec![0.0; size],
+            };
+            if let Some(a) = dt {
+                let (_, moved) = refit(plain, res, &sizes, dim, b)?
+                    .knot_jvp(super::element(a.data, st, b))
+                    .map_err(|e| e.to_string())?;
+                if moved.len() != out.len() {
+                    return Err(format!(
+                        "the knot tangent has {} numbers, the result {}",
+                        moved.len(),
+                        out.len()
+                    ));
+                }
+                for (o, d) in out.iter_mut().zip(&moved) {
+                    *o += d;
+                }
+            }
+            super::store(map, super::element_mut(tangent.data, size, b), &out)?;
+        }
+        Ok(())
     }
 
     fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
-        run_vjp(factored(call)?, &FACTORED, call)
+        let (map, plain) = (factored(call)?, fit(call)?);
+        let present = super::flags(call, ["with_knots", "with_data"]);
+        let Call { args, rets, .. } = call;
+        let (res, [g]) = super::tangents(args, FACTORED.len(), [true])?;
+        let g = g.ok_or("no cotangent")?;
+        let (batch, sizes, dim) = super::layout(res, &FACTORED)?;
+        let (st, sq) = (sizes[3], sizes[4]);
+        let size = batch.size("control-point cotangent", g.dims, 2)?;
+        let [mut gt, mut gq] = super::cotangents(rets, present)?;
+        if let Some(a) = &gt {
+            batch.expect("knot cotangent", a.dims, 1, st)?;
+        }
+        if let Some(a) = &gq {
+            batch.expect("data cotangent", a.dims, 2, sq)?;
+        }
+        for b in 0..batch.count {
+            let gb = super::element(g.data, size, b);
+            if let Some(a) = gq.as_mut() {
+                let got = super::apply(map, res, &sizes, dim, b, super::Op::Vjp(gb))?;
+                super::store(map, super::element_mut(a.data, sq, b), &got)?;
+            }
+            if let Some(a) = gt.as_mut() {
+                let got = refit(plain, res, &sizes, dim, b)?
+                    .knot_vjp(gb)
+                    .map_err(|e| e.to_string())?;
+                super::store(map, super::element_mut(a.data, st, b), &got)?;
+            }
+        }
+        Ok(())
     }
 }
 
@@ -199,8 +287,8 @@ fn apply(
     let data = operand(res.len() - 1);
     match fit {
         Fit::LeastSquares { degree, weighted } => {
-            let w = weighted.then(|| operand(2));
-            let fit = LeastSquaresFit::new(degree, operand(0), operand(1), data, dim, w)
+            let w = weighted.then(|| operand(1));
+            let fit = LeastSquaresFit::new(degree, operand(2), operand(0), data, dim, w)
                 .map_err(|e| e.to_string())?;
             match op {
                 Op::Values => fit.control_points(),
@@ -220,7 +308,13 @@ fn apply(
             }
         }
         Fit::Factored(factors) => {
-            let (flat, m) = (operand(res.len() - 2), data.len() / dim.max(1));
+            // the factors follow the constant residuals: before the knots and the points of the
+            // least-squares fit, before the values `y` of the smoothing spline
+            let at = match factors {
+                Factors::LeastSquares { .. } => 2,
+                Factors::Smoothing => 3,
+            };
+            let (flat, m) = (operand(at), data.len() / dim.max(1));
             match (factors, op) {
                 (_, Op::Values) => {
                     return Err("the values come from the fit, not its factors".into());
@@ -257,8 +351,8 @@ fn values_and_factors(
     let s = |e: lekalo::Error| e.to_string();
     match fit {
         Fit::LeastSquares { degree, weighted } => {
-            let w = weighted.then(|| operand(2));
-            let fit = LeastSquaresFit::new(degree, operand(0), operand(1), operand(3), dim, w)
+            let w = weighted.then(|| operand(1));
+            let fit = LeastSquaresFit::new(degree, operand(2), operand(0), operand(3), dim, w)
                 .map_err(s)?;
             let (values, map) = fit.control_points_and_map().map_err(s)?;
             Ok((values, map.to_flat()))
