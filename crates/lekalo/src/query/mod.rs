@@ -49,10 +49,11 @@ pub use length::{ArcLength, DEFAULT_LENGTH_RTOL};
 pub(crate) use mesh::triangle_bound;
 pub use offset::Offset;
 pub use pieces::{QueryCurve, MAX_QUERY_DEGREE};
+pub use pole_normal::MESH_NORMAL_RTOL;
 pub use project::{CurveProjection, SurfaceProjection, MAX_QUERY_RANGE};
 pub use surface::QuerySurface;
 pub(crate) use tessellate::{check_deviation, check_tol, TESSELLATION_TOLERANCE};
 pub use tessellate::{
-    Mesh, Polyline, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES, MAX_POLYLINE_POINTS, MESH_NORMAL_RTOL,
+    Mesh, Polyline, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES, MAX_POLYLINE_POINTS,
     MIN_RELATIVE_TOLERANCE,
 };

@@ -14,7 +14,14 @@
 //! axis whatever `u`; at a cone's apex it is the normal along the generator at `u`, the limit
 //! along that generator.
 
-use super::tessellate::MESH_NORMAL_RTOL;
+/// The relative size of `|S_u × S_v|`, against the largest `|S_u| · |S_v|` of a mesh, below
+/// which [`Mesh::surface_normals`](super::Mesh::surface_normals) takes a vertex's normal as the limit at a pole: rounding
+/// leaves derivatives of about `1e-15` of their size at a pole, whose direction is then
+/// noise; a normal accepted above a bound `t` is off by up to about `ε / t` radians
+/// (`ε` ≈ `1e-16`, the rounding of the cross product), and the limit taken below it by up
+/// to about `t` (the vertex's distance from the pole, relatively, in the first-order
+/// expansion): `t = 1e-8` ≈ `√ε` balances the two, both about `1e-8` radians.
+pub const MESH_NORMAL_RTOL: f64 = 1e-8;
 
 /// The direction `S_u × S_v` tends to (a vector of that direction, not unit) at
 /// `(u, v)` of `surface`, a point of a collapsed edge, approached from inside the domain

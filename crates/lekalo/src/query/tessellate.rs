@@ -3,6 +3,7 @@
 
 use super::intersect::segment_distance;
 use super::pieces::QueryCurve;
+use super::pole_normal::MESH_NORMAL_RTOL;
 use super::surface::{split_curve, QuerySurface};
 use crate::error::{check_finite, readable, Error, Result};
 use crate::{Arg, Points, What};
@@ -277,15 +278,6 @@ impl Mesh {
         self.vertex_normals(&given)
     }
 }
-
-/// The relative size of `|S_u × S_v|`, against the largest `|S_u| · |S_v|` of a mesh, below
-/// which [`Mesh::surface_normals`] takes a vertex's normal as the limit at a pole: rounding
-/// leaves derivatives of about `1e-15` of their size at a pole, whose direction is then
-/// noise; a normal accepted above a bound `t` is off by up to about `ε / t` radians
-/// (`ε` ≈ `1e-16`, the rounding of the cross product), and the limit taken below it by up
-/// to about `t` (the vertex's distance from the pole, relatively, in the first-order
-/// expansion): `t = 1e-8` ≈ `√ε` balances the two, both about `1e-8` radians.
-pub const MESH_NORMAL_RTOL: f64 = 1e-8;
 
 /// `a × b`.
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
