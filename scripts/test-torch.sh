@@ -17,23 +17,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
 
-python=${PYTHON:-python3}
-req=crates/lekalo-py/requirements-torch.txt
-key=$( (cat "$req"; "$python" -c 'import sys; print(sys.version)') | sha256sum | cut -c1-16)
-venv=${LEKALO_TORCH_VENV:-${XDG_CACHE_HOME:-$HOME/.cache}/lekalo/venv-torch-$key}
-if [ ! -x "$venv/bin/python" ] || [ ! -f "$venv/.complete" ]; then
-  echo "creating $venv (first run with these requirements: about 3 GB from PyPI, several minutes)"
-  rm -rf "$venv"
-  mkdir -p "$(dirname "$venv")"
-  "$python" -m venv "$venv"
-  "$venv/bin/pip" install --quiet --disable-pip-version-check -r "$req"
-  touch "$venv/.complete"
-else
-  echo "reusing $venv"
-fi
-export PATH="$venv/bin:$PATH"
+source scripts/python-env.sh
+python_env crates/lekalo-py/requirements-torch.txt venv-torch "${LEKALO_TORCH_VENV:-}" "about 3 GB from PyPI, several minutes"
 # a broken torch fails here, loudly, rather than letting the tests skip themselves
 "$venv/bin/python" -c 'import torch; print("torch", torch.__version__)'
-"$venv/bin/pip" install --quiet --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./crates/lekalo-py
+install_package
 cd "$root/crates/lekalo-py/tests"
 "$venv/bin/python" -m pytest -q -p no:cacheprovider "$@" test_torch.py test_torch_nurbs_nets.py

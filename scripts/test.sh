@@ -22,24 +22,9 @@ echo "== cargo test --workspace"
 cargo test --workspace
 
 echo "== Python package"
-python=${PYTHON:-python3}
-req=crates/lekalo-py/requirements-test.txt
-key=$( (cat "$req"; "$python" -c 'import sys; print(sys.version)') | sha256sum | cut -c1-16)
-venv=${LEKALO_VENV:-${XDG_CACHE_HOME:-$HOME/.cache}/lekalo/venv-$key}
-if [ ! -x "$venv/bin/python" ] || [ ! -f "$venv/.complete" ]; then
-  echo "creating $venv (first run with these requirements: a few minutes)"
-  rm -rf "$venv"
-  mkdir -p "$(dirname "$venv")"
-  "$python" -m venv "$venv"
-  "$venv/bin/pip" install --quiet --disable-pip-version-check -r "$req"
-  touch "$venv/.complete"
-else
-  echo "reusing $venv"
-fi
-export PATH="$venv/bin:$PATH"
-# the same command as for users, without build isolation so that the pinned maturin and the
-# workspace's target/ (already built dependencies) are used
-"$venv/bin/pip" install --quiet --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./crates/lekalo-py
+source scripts/python-env.sh
+python_env crates/lekalo-py/requirements-test.txt venv "${LEKALO_VENV:-}" "a few minutes"
+install_package
 # tests run against the installed package, from outside the source tree
 cd "$root/crates/lekalo-py/tests"
 "$venv/bin/python" -m pytest -q -p no:cacheprovider "$@" .
