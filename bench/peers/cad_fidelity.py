@@ -2,7 +2,7 @@
 """Every judged check of reading STEP and IGES files, lekalo against Open CASCADE, one table row a
 file.
 
-    V=target/occ-venv/bin/python   # a venv with cadquery-ocp and numpy (scripts/occ_step_files.py)
+    V=target/occ-venv/bin/python   # a venv with cadquery-ocp, numpy and scipy (scripts/occ_step_files.py)
     $V bench/peers/cad_fidelity.py [--repeats 3] [--tolerance 0.1] FILE ...
 
 For each file:

@@ -8,6 +8,7 @@
 
 use crate::error::{check_finite, Error, Result, MAX_SCALARS};
 use crate::knots::check_breakpoints;
+use crate::numeric::partitioned::{solve_partitioned, MIN_ROWS as PARTITIONED_ROWS};
 use crate::numeric::tridiagonal::{
     solve_tridiagonal, solve_unpivoted, Bands, StoredBands, Tridiagonal,
 };
@@ -154,8 +155,15 @@ fn slopes_with_scratch(
     let kept = dim == 1 && secants.is_some();
     rows.right_hand_side(y, dim, [start, end], slopes, secants);
     if dim == 1 {
-        // one column: eliminated from both ends at once (two dependent chains of half the
-        // length); a pivot that is not positive leaves partial work, formed again below
+        // one column: eliminated in eight partitions at once where they meet, else from both
+        // ends at once (two dependent chains of half the length); either leaves partial work
+        // when it gives up, so the right-hand side is formed again after it
+        if n >= PARTITIONED_ROWS {
+            if solve_partitioned(&rows, slopes, recip) {
+                return Ok(kept);
+            }
+            rows.right_hand_side(y, dim, [start, end], slopes, None);
+        }
         if solve_twisted(&rows, slopes, recip) {
             return Ok(kept);
         }
@@ -225,18 +233,7 @@ impl<'a> SplineRows<'a> {
         let h = |i: usize| x[i + 1] - x[i];
         let secant = |i: usize, j: usize| (y[(i + 1) * dim + j] - y[i * dim + j]) / h(i);
         if let (1, Some(sec)) = (dim, secants) {
-            // each secant divided once (a division is the costliest operation of the pass),
-            // the same operations as below
-            let p = n - 1;
-            let (sec, xs, ys) = (&mut sec[..p], &x[..=p], &y[..=p]);
-            for i in 0..p {
-                sec[i] = (ys[i + 1] - ys[i]) / (xs[i + 1] - xs[i]);
-            }
-            let inner = &mut b[1..p];
-            for (k, v) in inner.iter_mut().enumerate() {
-                let (h0, h1) = (xs[k + 1] - xs[k], xs[k + 2] - xs[k + 1]);
-                *v = 3.0 * (h1 * sec[k] + h0 * sec[k + 1]);
-            }
+            secant_rows(x, y, sec, b);
         } else if dim == 1 {
             let inner = b[1..n - 1].iter_mut().zip(x.windows(3)).zip(y.windows(3));
             for ((b, xw), yw) in inner {
@@ -347,6 +344,30 @@ impl Bands for SplineRows<'_> {
         let (h0, h1) = (w[1] - w[0], w[2] - w[1]);
         [h1, 2.0 * (h0 + h1), h0]
     }
+}
+
+/// The interior rows of SciPy's right-hand side for one column, `3(h_i δ_{i−1} + h_{i−1} δ_i)`
+/// into `b[1..n − 1]`, and the secants `δ_i = (y_{i+1} − y_i)/h_i` into `sec` (at least
+/// `n − 1`): each secant divided once (a division is the costliest operation of the pass), the
+/// same operations as [`SplineRows::right_hand_side`]'s other branches.
+#[inline(always)]
+fn secant_rows_body(x: &[f64], y: &[f64], sec: &mut [f64], b: &mut [f64]) {
+    let p = x.len() - 1;
+    let (sec, xs, ys) = (&mut sec[..p], &x[..=p], &y[..=p]);
+    for i in 0..p {
+        sec[i] = (ys[i + 1] - ys[i]) / (xs[i + 1] - xs[i]);
+    }
+    let inner = &mut b[1..p];
+    for (k, v) in inner.iter_mut().enumerate() {
+        let (h0, h1) = (xs[k + 1] - xs[k], xs[k + 2] - xs[k + 1]);
+        *v = 3.0 * (h1 * sec[k] + h0 * sec[k + 1]);
+    }
+}
+
+crate::numeric::isa::avx2_dispatch! {
+    /// [`secant_rows_body`] compiled with AVX2 where the processor has it (four divisions at
+    /// once), else as built ([`crate::numeric::isa`]: the same bits).
+    fn secant_rows(x: &[f64], y: &[f64], sec: &mut [f64], b: &mut [f64]) = secant_rows_body;
 }
 
 /// SciPy's `dx` (`n − 1` steps) and `slope` (`n − 1` rows of `dim` secants `(y_{i+1} − y_i)/h_i`).

@@ -299,22 +299,60 @@ proptest! {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// Data long enough for the partitioned elimination, on steps of any size up to 1e6
+    /// apart: still the spline of the conditions (where the partitions do not meet, the
+    /// elimination from both ends solves it).
+    #[test]
+    fn long_data_meet_the_conditions(
+        steps in prop::collection::vec(1e-3_f64..3.0, PARTITIONED_ROWS..2 * PARTITIONED_ROWS),
+        jumps in prop::collection::vec((0_usize..1 << 20, 1e-6_f64..1e3), 0..6),
+        kind in 0_usize..3,
+    ) {
+        let mut steps = steps;
+        for (at, h) in jumps {
+            let i = at % steps.len();
+            steps[i] = h;
+        }
+        let mut x = vec![0.0];
+        for h in &steps {
+            x.push(x[x.len() - 1] + h);
+        }
+        let y: Vec<f64> = x.iter().map(|v| (0.7 * v).sin() + 0.1 * v).collect();
+        let (v1, v2) = ([0.25], [-1.5]);
+        let ends = match kind {
+            0 => [CubicSplineEnd::NotAKnot; 2],
+            1 => [CubicSplineEnd::FirstDerivative(&v1), CubicSplineEnd::SecondDerivative(&v2)],
+            _ => [CubicSplineEnd::SecondDerivative(&v2), CubicSplineEnd::NotAKnot],
+        };
+        let c = spline(&x, &y, 1, ends);
+        check_conditions(&x, &y, 1, ends, &c);
+    }
+}
+
+proptest! {
     /// The rows formed where the solver reads them are SciPy's stored bands, entry for entry:
     /// the slopes equal, bit for bit, those of the bands written out and solved by the same
-    /// elimination (from both ends for one column, with row swaps when a pivot is not
-    /// positive), for one column and three, with the power form's scratch or without.
+    /// elimination (in partitions or from both ends for one column, with row swaps when a
+    /// pivot is not positive), for one column and three, with the power form's scratch or
+    /// without, on short data and on data long enough for the partitions.
     #[test]
     fn rows_read_in_place_are_the_stored_bands(
-        steps in prop::collection::vec(1e-6_f64..3.0, 2..60),
-        values in prop::collection::vec(-5.0_f64..5.0, 3 * 61 + 2),
+        steps in prop_oneof![
+            prop::collection::vec(1e-6_f64..3.0, 2..60),
+            prop::collection::vec(1e-6_f64..3.0, PARTITIONED_ROWS..PARTITIONED_ROWS + 200),
+        ],
+        values in prop::collection::vec(-5.0_f64..5.0, 3 * (PARTITIONED_ROWS + 201) + 2),
         kinds in (0_usize..3, 0_usize..3),
     ) {
+        let last = values.len() - 2;
         let mut x = vec![-1.5];
         for h in &steps {
             x.push(x[x.len() - 1] + h);
         }
         let n = x.len();
-        let (v1, v2) = (values[3 * 61], values[3 * 61 + 1]);
+        let (v1, v2) = (values[last], values[last + 1]);
         for dim in [1, 3] {
             let y = &values[..n * dim];
             let (d1, d2) = (vec![v1; dim], vec![v2; dim]);
@@ -328,9 +366,16 @@ proptest! {
             let mut stored = vec![0.0; n * dim];
             rows.right_hand_side(y, dim, [start, stop], &mut stored, None);
             let (mut dl, mut d, mut du) = rows.stored();
-            // one column from both ends, else row swaps; several by `solve`
+            // one column in partitions, else from both ends, else row swaps; several by `solve`
             let bands = StoredBands { dl: &dl, d: &d, du: &du };
-            let twisted = dim == 1 && solve_twisted(&bands, &mut stored, &mut vec![0.0; n]);
+            let partitioned = dim == 1
+                && n >= PARTITIONED_ROWS
+                && solve_partitioned(&bands, &mut stored, &mut vec![0.0; n]);
+            if dim == 1 && !partitioned && n >= PARTITIONED_ROWS {
+                rows.right_hand_side(y, dim, [start, stop], &mut stored, None);
+            }
+            let twisted = dim == 1
+                && (partitioned || solve_twisted(&bands, &mut stored, &mut vec![0.0; n]));
             if dim == 1 && !twisted {
                 rows.right_hand_side(y, dim, [start, stop], &mut stored, None);
                 let m = Tridiagonal { dl: &mut dl, d: &mut d, du: &mut du };
