@@ -161,8 +161,8 @@ pub(crate) fn solve_partitioned(m: &impl Bands, b: &mut [f64], recip: &mut [f64]
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::numeric::tridiagonal::tests::spline_rows;
-    use crate::numeric::tridiagonal::{solve_tridiagonal, StoredBands, Tridiagonal};
+    use crate::numeric::tridiagonal::tests::{pivoted, spline_rows};
+    use crate::numeric::tridiagonal::StoredBands;
     use proptest::prelude::*;
 
     /// One chain of elimination, the operations of [`Down::step`] and [`back`] in row order.
@@ -187,17 +187,6 @@ mod tests {
             b[i] = x;
         }
         b
-    }
-
-    fn pivoted(dl: &[f64], d: &[f64], du: &[f64], rhs: &[f64]) -> Vec<f64> {
-        let (mut l, mut m, mut u, mut x) = (dl.to_vec(), d.to_vec(), du.to_vec(), rhs.to_vec());
-        let t = Tridiagonal {
-            dl: &mut l,
-            d: &mut m,
-            du: &mut u,
-        };
-        solve_tridiagonal(t, &mut x, 1).unwrap();
-        x
     }
 
     /// The rows of SciPy's `CubicSpline` system (not-a-knot ends) on the steps `h`.

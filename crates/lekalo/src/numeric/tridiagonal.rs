@@ -256,6 +256,18 @@ pub(crate) fn solve_unpivoted(
 pub(crate) mod tests {
     use super::*;
 
+    /// The solution of one column by LAPACK `dgtsv`'s elimination with row swaps.
+    pub(crate) fn pivoted(dl: &[f64], d: &[f64], du: &[f64], rhs: &[f64]) -> Vec<f64> {
+        let (mut l, mut m, mut u, mut x) = (dl.to_vec(), d.to_vec(), du.to_vec(), rhs.to_vec());
+        let t = Tridiagonal {
+            dl: &mut l,
+            d: &mut m,
+            du: &mut u,
+        };
+        solve_tridiagonal(t, &mut x, 1).unwrap();
+        x
+    }
+
     /// SciPy's `CubicSpline` rows `(dl, d, du)` on `n` uneven steps, some 100× the others (where
     /// `dgtsv` swaps rows): not-a-knot ends from four points, natural ends below (the
     /// not-a-knot rows of three points are singular: SciPy solves that case as the parabola

@@ -141,21 +141,10 @@ pub(crate) fn solve_twisted(m: &impl Bands, b: &mut [f64], recip: &mut [f64]) ->
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::numeric::tridiagonal::tests::spline_rows;
-    use crate::numeric::tridiagonal::{solve_tridiagonal, StoredBands, Tridiagonal};
+    use crate::numeric::tridiagonal::tests::{pivoted, spline_rows};
+    use crate::numeric::tridiagonal::StoredBands;
 
     /// `dgtsv`'s solution of the same system.
-    fn pivoted(dl: &[f64], d: &[f64], du: &[f64], rhs: &[f64]) -> Vec<f64> {
-        let (mut l, mut m, mut u, mut x) = (dl.to_vec(), d.to_vec(), du.to_vec(), rhs.to_vec());
-        let t = Tridiagonal {
-            dl: &mut l,
-            d: &mut m,
-            du: &mut u,
-        };
-        solve_tridiagonal(t, &mut x, 1).unwrap();
-        x
-    }
-
     #[test]
     fn the_solution_of_row_swaps_to_rounding_at_every_meeting_row() {
         // every n from 2 (each half's leftover rows, odd and even n) and a long system
